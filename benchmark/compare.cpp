@@ -1,0 +1,1019 @@
+// compare: runs ICM's parameterizers and CGAL's on the same meshes and prints the paper's
+// Table I (conformality, angle distortion, L2 shear, L2 stretch, log area distortion) plus
+// wall time, peak memory, flipped faces and quasi-conformal ratios, as Markdown or JSON lines.
+//
+//   compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c] [--subdivide K]
+//           [--svg-panels FILE] [--quiet] MESH...
+//
+// Every run of every method happens in a forked child process on its own copy of the mesh:
+// a method that hangs is killed at the time limit and shown as `timeout`, a method that
+// crashes is shown as `crashed (signal N)`, and the child's peak resident memory is the
+// method's (plus the process image inherited at fork, which holds the input mesh).
+// See doc/benchmarks.md.
+
+#include <ICM/Distortion.h>
+#include <ICM/IO/Uv_mesh.h>
+#include <ICM/IO/write_uv_svg.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/subdivision_method_3.h>
+
+#include <CGAL/Surface_mesh_parameterization/ARAP_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Discrete_authalic_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Discrete_conformal_map_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Error_code.h>
+#include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace {
+
+namespace SMP = CGAL::Surface_mesh_parameterization;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point_2 = Kernel::Point_2;
+using Point_3 = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point_3>;
+using vertex_descriptor = boost::graph_traits<Mesh>::vertex_descriptor;
+using halfedge_descriptor = boost::graph_traits<Mesh>::halfedge_descriptor;
+using face_descriptor = boost::graph_traits<Mesh>::face_descriptor;
+using UV_map = Mesh::Property_map<vertex_descriptor, Point_2>;
+
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+
+// ------------------------------------------------------------------------------------------
+// The method registry. A method takes a fresh mesh, its longest border halfedge and an empty
+// UV map; it returns the error code, the wall time of the parameterize() call and, for ICM,
+// the solver's report.
+// ------------------------------------------------------------------------------------------
+
+struct Run_result {
+  SMP::Error_code code = SMP::OK;
+  double seconds = NaN;                  // wall time of the parameterize() call only
+  std::string message;                   // extra failure reason (ICM's report)
+  std::optional<int> newton_iterations;  // ICM only
+};
+
+struct Method {
+  std::string name;
+  std::function<Run_result(Mesh&, halfedge_descriptor, UV_map)> run;
+};
+
+// Times CGAL's free function parameterize(); `p` is passed on by value, as CGAL does.
+template <class Parameterizer>
+Run_result timed_parameterize(Mesh& mesh, const Parameterizer& p, halfedge_descriptor bhd,
+                              UV_map uvmap) {
+  Run_result r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.code = SMP::parameterize(mesh, p, bhd, uvmap);
+  const auto t1 = std::chrono::steady_clock::now();
+  r.seconds = std::chrono::duration<double>(t1 - t0).count();
+  return r;
+}
+
+// A CGAL parameterizer, default constructed.
+template <class Parameterizer>
+Method cgal_method(std::string name) {
+  return {std::move(name), [](Mesh& mesh, halfedge_descriptor bhd, UV_map uvmap) {
+            return timed_parameterize(mesh, Parameterizer(), bhd, uvmap);
+          }};
+}
+
+// An ICM parameterizer: its report() is shared between copies, so it can be read from the
+// local object after CGAL's parameterize() has worked on a copy.
+template <class Parameterizer>
+Method icm_method(std::string name) {
+  return {std::move(name), [](Mesh& mesh, halfedge_descriptor bhd, UV_map uvmap) {
+            Parameterizer p;
+            Run_result r = timed_parameterize(mesh, p, bhd, uvmap);
+            const ICM::Parameterization_report& report = p.report();
+            r.newton_iterations = report.newton_iterations;
+            r.message = report.message;
+            return r;
+          }};
+}
+
+// Add a method here with one line; its name is what --methods selects.
+std::vector<Method> make_registry() {
+  return {
+      icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh>>("icm_free_boundary"),
+      cgal_method<SMP::LSCM_parameterizer_3<Mesh>>("lscm"),
+      cgal_method<SMP::ARAP_parameterizer_3<Mesh>>("arap"),
+      cgal_method<SMP::Discrete_conformal_map_parameterizer_3<Mesh>>("dcm"),
+      cgal_method<SMP::Discrete_authalic_parameterizer_3<Mesh>>("dac"),
+      cgal_method<SMP::Mean_value_coordinates_parameterizer_3<Mesh>>("mvc"),
+  };
+}
+
+// The methods drawn by --svg-panels, in this order.
+const std::vector<std::string> panel_methods = {"icm_free_boundary", "lscm", "arap"};
+
+// ------------------------------------------------------------------------------------------
+// Options
+// ------------------------------------------------------------------------------------------
+
+struct Options {
+  bool json = false;
+  bool quiet = false;
+  int runs = 0;  // 0: automatic (3 if one run takes < 2 s, else 1)
+  double time_limit = 600.0;
+  int subdivide = 0;
+  std::vector<std::string> methods;  // empty: all
+  std::string svg_panels;
+  std::vector<std::string> meshes;
+};
+
+const char* usage_text =
+    "usage: compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c]\n"
+    "               [--subdivide K] [--svg-panels FILE] [--quiet] MESH...\n"
+    "\n"
+    "Runs each parameterization method on each mesh (OFF/OBJ/PLY, a topological disk) and\n"
+    "prints the paper's Table I plus time, memory and flips as Markdown (or JSON lines).\n"
+    "\n"
+    "  --json             one JSON object per (mesh, method) on stdout instead of Markdown\n"
+    "  --runs N           timed runs per method, median reported (default: 3 if one run\n"
+    "                     takes < 2 s, else 1)\n"
+    "  --time-limit S     per-run limit in seconds; slower runs are killed and shown as\n"
+    "                     'timeout' (default 600)\n"
+    "  --methods a,b      run only these methods (default: all)\n"
+    "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
+    "  --svg-panels FILE  write the UV layouts of icm_free_boundary, lscm and arap for the\n"
+    "                     first mesh side by side to FILE (faces coloured by log area ratio)\n"
+    "  --quiet            no progress lines on stderr\n";
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == ',') {
+      if (!cur.empty()) out.push_back(cur);
+      cur.clear();
+    } else if (c != ' ') {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
+[[noreturn]] void usage_error(const std::string& what) {
+  std::cerr << "compare: " << what << "\n\n" << usage_text;
+  std::exit(2);
+}
+
+bool parse_int(const std::string& s, int& v) {
+  char* end = nullptr;
+  errno = 0;
+  const long x = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno != 0 || x < std::numeric_limits<int>::min() ||
+      x > std::numeric_limits<int>::max())
+    return false;
+  v = static_cast<int>(x);
+  return true;
+}
+
+bool parse_double(const std::string& s, double& v) {
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && errno == 0 && std::isfinite(v);
+}
+
+Options parse_options(int argc, char** argv, const std::vector<Method>& registry) {
+  Options o;
+  auto value = [&](int& i, const std::string& opt) -> std::string {
+    if (i + 1 >= argc) usage_error("option " + opt + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::cout << usage_text;
+      std::exit(0);
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else if (a == "--runs") {
+      if (!parse_int(value(i, a), o.runs) || o.runs < 1)
+        usage_error("--runs needs a positive integer");
+    } else if (a == "--time-limit") {
+      if (!parse_double(value(i, a), o.time_limit) || o.time_limit <= 0)
+        usage_error("--time-limit needs a positive number of seconds");
+    } else if (a == "--subdivide") {
+      if (!parse_int(value(i, a), o.subdivide) || o.subdivide < 0 || o.subdivide > 8)
+        usage_error("--subdivide needs an integer in [0, 8]");
+    } else if (a == "--methods") {
+      o.methods = split_commas(value(i, a));
+      if (o.methods.empty()) usage_error("--methods needs at least one name");
+    } else if (a == "--svg-panels") {
+      o.svg_panels = value(i, a);
+    } else if (a.size() > 1 && a[0] == '-' && a != "-") {
+      usage_error("unknown option " + a);
+    } else {
+      o.meshes.push_back(a);
+    }
+  }
+  for (const std::string& m : o.methods) {
+    const bool known = std::any_of(registry.begin(), registry.end(),
+                                   [&](const Method& r) { return r.name == m; });
+    if (!known) {
+      std::string valid;
+      for (const Method& r : registry) valid += (valid.empty() ? "" : ", ") + r.name;
+      std::cerr << "compare: unknown method '" << m << "'; valid methods: " << valid << "\n";
+      std::exit(2);
+    }
+  }
+  if (o.meshes.empty()) usage_error("no mesh given");
+  return o;
+}
+
+// ------------------------------------------------------------------------------------------
+// Results
+// ------------------------------------------------------------------------------------------
+
+struct Measures {
+  double faces = NaN, flipped = NaN, degenerate = NaN;
+  double conformality = NaN, angle_distortion = NaN, l2_shear = NaN, l2_stretch = NaN,
+         log_area_distortion = NaN, qc_mean = NaN, qc_max = NaN, area_ratio_min = NaN,
+         area_ratio_max = NaN;
+};
+
+Measures to_measures(const ICM::Distortion_measures& d) {
+  Measures m;
+  m.faces = static_cast<double>(d.faces);
+  m.flipped = static_cast<double>(d.flipped_faces);
+  m.degenerate = static_cast<double>(d.degenerate_uv_faces);
+  m.conformality = d.conformality;
+  m.angle_distortion = d.angle_distortion;
+  m.l2_shear = d.l2_shear;
+  m.l2_stretch = d.l2_stretch;
+  m.log_area_distortion = d.log_area_distortion;
+  m.qc_mean = d.qc_mean;
+  m.qc_max = d.qc_max;
+  m.area_ratio_min = d.area_ratio_min;
+  m.area_ratio_max = d.area_ratio_max;
+  return m;
+}
+
+// One (mesh, method) row of the table.
+struct Row {
+  std::string mesh;
+  std::size_t vertices = 0, faces = 0;
+  std::string method;
+  std::string status;
+  double seconds = NaN;
+  double peak_rss_mb = NaN;
+  bool has_measures = false;
+  Measures m;
+  std::optional<int> newton_iterations;
+};
+
+// What one child process sends back through its pipe: "key value" lines.
+struct Child_result {
+  bool complete = false;
+  int code = 0;
+  double seconds = NaN;
+  double peak_rss_mb = NaN;
+  bool has_measures = false;
+  Measures m;
+  std::optional<int> newton_iterations;
+  std::string message;
+  std::string exception;
+};
+
+std::string fmt_g(double x) {
+  if (std::isnan(x)) return "nan";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+std::string serialize(const Child_result& r) {
+  std::ostringstream out;
+  out << "code " << r.code << "\n";
+  out << "seconds " << fmt_g(r.seconds) << "\n";
+  out << "rss " << fmt_g(r.peak_rss_mb) << "\n";
+  if (r.newton_iterations) out << "newton " << *r.newton_iterations << "\n";
+  if (r.has_measures) {
+    const Measures& m = r.m;
+    const std::pair<const char*, double> fields[] = {
+        {"faces", m.faces},
+        {"flipped", m.flipped},
+        {"degenerate", m.degenerate},
+        {"conformality", m.conformality},
+        {"angle_distortion", m.angle_distortion},
+        {"l2_shear", m.l2_shear},
+        {"l2_stretch", m.l2_stretch},
+        {"log_area_distortion", m.log_area_distortion},
+        {"qc_mean", m.qc_mean},
+        {"qc_max", m.qc_max},
+        {"area_ratio_min", m.area_ratio_min},
+        {"area_ratio_max", m.area_ratio_max}};
+    out << "measured 1\n";
+    for (const auto& f : fields) out << "m." << f.first << " " << fmt_g(f.second) << "\n";
+  }
+  if (!r.message.empty()) out << "message " << one_line(r.message) << "\n";
+  if (!r.exception.empty()) out << "exception " << one_line(r.exception) << "\n";
+  out << "end 1\n";
+  return out.str();
+}
+
+Child_result deserialize(const std::string& text) {
+  std::map<std::string, std::string> kv;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto sp = line.find(' ');
+    if (sp == std::string::npos) continue;
+    kv[line.substr(0, sp)] = line.substr(sp + 1);
+  }
+  Child_result r;
+  r.complete = kv.count("end") > 0;
+  auto num = [&](const char* key) {
+    auto it = kv.find(key);
+    return it == kv.end() ? NaN : std::strtod(it->second.c_str(), nullptr);
+  };
+  r.code = kv.count("code") ? std::atoi(kv["code"].c_str()) : 0;
+  r.seconds = num("seconds");
+  r.peak_rss_mb = num("rss");
+  if (kv.count("newton")) r.newton_iterations = std::atoi(kv["newton"].c_str());
+  r.has_measures = kv.count("measured") > 0;
+  Measures& m = r.m;
+  m.faces = num("m.faces");
+  m.flipped = num("m.flipped");
+  m.degenerate = num("m.degenerate");
+  m.conformality = num("m.conformality");
+  m.angle_distortion = num("m.angle_distortion");
+  m.l2_shear = num("m.l2_shear");
+  m.l2_stretch = num("m.l2_stretch");
+  m.log_area_distortion = num("m.log_area_distortion");
+  m.qc_mean = num("m.qc_mean");
+  m.qc_max = num("m.qc_max");
+  m.area_ratio_min = num("m.area_ratio_min");
+  m.area_ratio_max = num("m.area_ratio_max");
+  if (kv.count("message")) r.message = kv["message"];
+  if (kv.count("exception")) r.exception = kv["exception"];
+  return r;
+}
+
+// VmHWM (peak resident set size) of a process in MB, NaN when unknown.
+double vm_hwm_mb(const std::string& status_path) {
+  std::ifstream status(status_path);
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) {
+      const double kb = std::strtod(line.c_str() + 6, nullptr);
+      if (kb > 0) return kb / 1024.0;
+    }
+  }
+  return NaN;
+}
+
+// Peak resident set size of this process in MB: VmHWM, else getrusage's ru_maxrss.
+double peak_rss_mb() {
+  const double hwm = vm_hwm_mb("/proc/self/status");
+  if (std::isfinite(hwm)) return hwm;
+  rusage ru{};
+  if (getrusage(RUSAGE_SELF, &ru) == 0) return static_cast<double>(ru.ru_maxrss) / 1024.0;
+  return NaN;
+}
+
+// UVs are worth measuring when the method produced a complete map (possibly with flips).
+bool has_usable_uvs(SMP::Error_code code) {
+  return code == SMP::OK || code == SMP::ERROR_NO_1_TO_1_MAPPING;
+}
+
+// The text of an Error_code: CGAL's get_error_message(). In CGAL 5.5 its table misses the
+// entry of ERROR_NO_TOPOLOGICAL_BALL, so from that code on it answers with the next code's
+// text and, for ERROR_WRONG_PARAMETER, with a null pointer; then the texts come from here.
+std::string error_text(int code) {
+  const char* last = SMP::get_error_message(SMP::ERROR_WRONG_PARAMETER);
+  const bool cgal_in_sync =
+      last != nullptr && std::string(last) == "A method received an unexpected parameter";
+  if (cgal_in_sync || code < SMP::ERROR_NO_TOPOLOGICAL_BALL || code > SMP::ERROR_WRONG_PARAMETER) {
+    const char* s = SMP::get_error_message(code);
+    return s != nullptr ? s : "Unknown error";
+  }
+  switch (code) {
+    case SMP::ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
+    case SMP::ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
+    case SMP::ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
+    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
+    case SMP::ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
+    default: return "A method received an unexpected parameter";
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// Running one method in a child process
+// ------------------------------------------------------------------------------------------
+
+void write_all(int fd, const std::string& s) {
+  const char* p = s.data();
+  std::size_t left = s.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+// The child's work: copy the mesh, run, measure, report. Never returns.
+[[noreturn]] void child_main(int fd, const Mesh& input, const Method& method, bool measure) {
+  Child_result r;
+  try {
+    Mesh mesh = input;  // the method's own copy
+    UV_map uvmap = mesh.add_property_map<vertex_descriptor, Point_2>("v:compare_uv",
+                                                                    Point_2(0, 0)).first;
+    const halfedge_descriptor bhd = PMP::longest_border(mesh).first;
+    const Run_result run = method.run(mesh, bhd, uvmap);
+    r.peak_rss_mb = peak_rss_mb();  // right after the run, before measuring
+    r.code = static_cast<int>(run.code);
+    r.seconds = run.seconds;
+    r.newton_iterations = run.newton_iterations;
+    r.message = run.message;
+    if (measure && has_usable_uvs(run.code)) {
+      r.m = to_measures(ICM::measure_distortion(mesh, uvmap));
+      r.has_measures = true;
+    }
+  } catch (const std::exception& e) {
+    r.exception = e.what();
+    if (r.exception.empty()) r.exception = "std::exception";
+  } catch (...) {
+    r.exception = "unknown exception";
+  }
+  write_all(fd, serialize(r));
+  ::close(fd);
+  std::_Exit(0);
+}
+
+struct Child_outcome {
+  enum Kind { finished, timeout, crashed, lost } kind = lost;
+  int signal = 0;
+  int exit_code = 0;
+  double peak_rss_mb = NaN;  // timeout only: the child's peak memory when it was killed
+  Child_result result;
+};
+
+Child_outcome run_in_child(const Mesh& mesh, const Method& method, bool measure,
+                           double time_limit) {
+  Child_outcome out;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    std::perror("compare: pipe");
+    return out;
+  }
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    std::perror("compare: fork");
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return out;
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the runner
+    if (::getppid() != parent) std::_Exit(3);
+    // The results go through the pipe; keep whatever a method prints off our stdout.
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) {
+      ::dup2(devnull, STDOUT_FILENO);
+      ::close(devnull);
+    }
+    child_main(fds[1], mesh, method, measure);
+  }
+  ::close(fds[1]);
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_limit);
+  std::string data;
+  bool eof = false, timed_out = false;
+  char buf[4096];
+  while (!eof) {
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int wait_ms = static_cast<int>(std::min(left * 1000.0 + 1.0, 60000.0));
+    const int rc = ::poll(&p, 1, wait_ms);
+    if (rc < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    if (rc == 0) continue;
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    if (n == 0) eof = true;
+    else data.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+
+  int status = 0;
+  if (timed_out) {
+    // The peak memory so far, read before the kill: a lower bound of what the run needs.
+    out.peak_rss_mb = vm_hwm_mb("/proc/" + std::to_string(pid) + "/status");
+    ::kill(pid, SIGKILL);
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    out.kind = Child_outcome::timeout;
+    return out;
+  }
+  // The pipe is closed: the child has written its result or died. Give it a moment to exit.
+  pid_t w = 0;
+  for (int i = 0; i < 1000; ++i) {
+    w = ::waitpid(pid, &status, WNOHANG);
+    if (w != 0 && !(w < 0 && errno == EINTR)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (w == 0) {  // closed its pipe but still running: treat as hung
+    ::kill(pid, SIGKILL);
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    out.kind = Child_outcome::timeout;
+    return out;
+  }
+  out.result = deserialize(data);
+  if (w > 0 && WIFSIGNALED(status)) {
+    out.kind = Child_outcome::crashed;
+    out.signal = WTERMSIG(status);
+  } else if (w > 0 && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    out.kind = Child_outcome::crashed;
+    out.exit_code = WEXITSTATUS(status);
+  } else if (out.result.complete) {
+    out.kind = Child_outcome::finished;
+  } else {
+    out.kind = Child_outcome::lost;
+  }
+  return out;
+}
+
+std::string status_of(const Child_outcome& o) {
+  switch (o.kind) {
+    case Child_outcome::timeout:
+      return "timeout";
+    case Child_outcome::crashed:
+      if (o.signal != 0) return "crashed (signal " + std::to_string(o.signal) + ")";
+      return "crashed (exit code " + std::to_string(o.exit_code) + ")";
+    case Child_outcome::lost:
+      return "crashed (no result)";
+    case Child_outcome::finished:
+      break;
+  }
+  const Child_result& r = o.result;
+  if (!r.exception.empty()) return "failed: exception: " + r.exception;
+  if (r.code != SMP::OK) {
+    std::string s = "failed: " + error_text(r.code);
+    if (!r.message.empty()) s += "; " + r.message;
+    return s;
+  }
+  return "ok";
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NaN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// All runs of one method on one mesh: the first run measures; more runs only time.
+Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row row) {
+  row.method = method.name;
+  const Child_outcome first = run_in_child(mesh, method, /*measure=*/true, opt.time_limit);
+  row.status = status_of(first);
+  if (first.kind == Child_outcome::timeout) row.peak_rss_mb = first.peak_rss_mb;
+  if (first.kind != Child_outcome::finished) return row;
+  const Child_result& r = first.result;
+  row.has_measures = r.has_measures;
+  row.m = r.m;
+  row.newton_iterations = r.newton_iterations;
+  row.peak_rss_mb = r.peak_rss_mb;
+  std::vector<double> times{r.seconds};
+  if (row.status == "ok") {
+    const int runs = opt.runs > 0 ? opt.runs : (r.seconds < 2.0 ? 3 : 1);
+    for (int k = 1; k < runs; ++k) {
+      const Child_outcome more = run_in_child(mesh, method, /*measure=*/false, opt.time_limit);
+      const std::string st = status_of(more);
+      if (st != "ok") {  // a method that is not deterministic in its outcome: show it
+        row.status = st + " (run " + std::to_string(k + 1) + ")";
+        break;
+      }
+      times.push_back(more.result.seconds);
+      row.peak_rss_mb = std::max(row.peak_rss_mb, more.result.peak_rss_mb);
+    }
+  }
+  row.seconds = median(times);
+  return row;
+}
+
+// ------------------------------------------------------------------------------------------
+// Meshes
+// ------------------------------------------------------------------------------------------
+
+std::string mesh_name(const std::string& path) {
+  std::string name = path;
+  const auto slash = name.find_last_of('/');
+  if (slash != std::string::npos) name = name.substr(slash + 1);
+  const auto dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) name = name.substr(0, dot);
+  return name;
+}
+
+// Reads and prepares a mesh; on failure returns false with a reason.
+bool load_mesh(const std::string& path, int subdivide, Mesh& mesh, std::string& error) {
+  mesh.clear();
+  bool ok = false;
+  try {
+    ok = CGAL::IO::read_polygon_mesh(path, mesh);
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+  if (!ok) {
+    error = "cannot read a polygon mesh from this file";
+    return false;
+  }
+  if (num_faces(mesh) == 0) {
+    error = "the mesh has no faces";
+    return false;
+  }
+  if (!CGAL::is_triangle_mesh(mesh)) PMP::triangulate_faces(mesh);
+  if (subdivide > 0)
+    CGAL::Subdivision_method_3::Loop_subdivision(
+        mesh, CGAL::parameters::number_of_iterations(static_cast<unsigned int>(subdivide)));
+  if (mesh.has_garbage()) mesh.collect_garbage();
+  return true;
+}
+
+// "" when the mesh is a topological disk (one component, one boundary loop, genus 0),
+// else the reason for skipping it.
+std::string disk_check(Mesh& mesh) {
+  auto fccmap = mesh.add_property_map<face_descriptor, std::size_t>("f:compare_cc").first;
+  const std::size_t components = PMP::connected_components(mesh, fccmap);
+  mesh.remove_property_map(fccmap);
+  std::vector<halfedge_descriptor> cycles;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
+  const long b = static_cast<long>(cycles.size());
+  const long chi = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
+                   static_cast<long>(num_faces(mesh));
+  if (components != 1)
+    return "skipped: not a disk (" + std::to_string(components) + " components, " +
+           std::to_string(b) + " loops)";
+  const long two_g = 2 - b - chi;
+  const std::string genus = two_g % 2 == 0 ? std::to_string(two_g / 2) : "?";
+  if (b != 1 || two_g != 0)
+    return "skipped: not a disk (" + std::to_string(b) + " loops, genus " + genus + ")";
+  return "";
+}
+
+// ------------------------------------------------------------------------------------------
+// Output
+// ------------------------------------------------------------------------------------------
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': o += "\\\""; break;
+      case '\\': o += "\\\\"; break;
+      case '\n': o += "\\n"; break;
+      case '\t': o += "\\t"; break;
+      case '\r': o += "\\r"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          o += buf;
+        } else {
+          o += static_cast<char>(c);
+        }
+    }
+  }
+  return o;
+}
+
+std::string json_num(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+std::string json_count(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f", x);
+  return buf;
+}
+
+void print_json(const Row& r) {
+  const Measures& m = r.m;
+  const bool h = r.has_measures;
+  std::ostringstream o;
+  o << "{\"mesh\": \"" << json_escape(r.mesh) << "\", \"vertices\": " << r.vertices
+    << ", \"faces\": " << r.faces << ", \"method\": \"" << json_escape(r.method)
+    << "\", \"status\": \"" << json_escape(r.status) << "\""
+    << ", \"seconds\": " << json_num(r.seconds)
+    << ", \"peak_rss_mb\": " << json_num(r.peak_rss_mb)
+    << ", \"flipped\": " << (h ? json_count(m.flipped) : "null")
+    << ", \"degenerate\": " << (h ? json_count(m.degenerate) : "null")
+    << ", \"conformality\": " << (h ? json_num(m.conformality) : "null")
+    << ", \"angle_distortion\": " << (h ? json_num(m.angle_distortion) : "null")
+    << ", \"l2_shear\": " << (h ? json_num(m.l2_shear) : "null")
+    << ", \"l2_stretch\": " << (h ? json_num(m.l2_stretch) : "null")
+    << ", \"log_area_distortion\": " << (h ? json_num(m.log_area_distortion) : "null")
+    << ", \"qc_mean\": " << (h ? json_num(m.qc_mean) : "null")
+    << ", \"qc_max\": " << (h ? json_num(m.qc_max) : "null")
+    << ", \"area_ratio_min\": " << (h ? json_num(m.area_ratio_min) : "null")
+    << ", \"area_ratio_max\": " << (h ? json_num(m.area_ratio_max) : "null")
+    << ", \"newton_iterations\": "
+    << (r.newton_iterations ? std::to_string(*r.newton_iterations) : std::string("null"))
+    << "}\n";
+  std::cout << o.str() << std::flush;
+}
+
+// Fixed decimals as in the paper's table, switching to scientific notation when that would
+// show fewer than two significant digits (or a huge number).
+std::string fmt_fixed(double x, int decimals) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[64];
+  const double ax = std::fabs(x);
+  if (x != 0 && (ax < 10.0 * std::pow(10.0, -decimals) || ax >= 1e7))
+    std::snprintf(buf, sizeof buf, "%.2e", x);
+  else
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
+// Seconds with three significant digits below 10 s (0.00291, 0.0412, 1.23), else 0.1 s.
+std::string fmt_seconds(double x) {
+  if (!std::isfinite(x)) return "";
+  char buf[64];
+  if (x < 10.0) std::snprintf(buf, sizeof buf, "%.3g", x);
+  else std::snprintf(buf, sizeof buf, "%.1f", x);
+  return buf;
+}
+
+std::string md_cell(std::string s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '|') o += "\\|";
+    else o += c;
+  }
+  return o;
+}
+
+std::string model_label(const Row& r) {
+  return r.mesh + " #v: " + std::to_string(r.vertices) + " #f: " + std::to_string(r.faces);
+}
+
+void print_markdown_header() {
+  std::cout << "| Model | Method | conformality | angle distortion | L2 shear | L2 stretch | "
+               "log area distortion | time (s) | flipped | QC mean | QC max | peak MB | "
+               "Newton its | status |\n"
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+}
+
+void print_markdown_row(const Row& r, bool first) {
+  const Measures& m = r.m;
+  const bool h = r.has_measures;
+  auto cell = [&](double x, int decimals) { return h ? fmt_fixed(x, decimals) : std::string(); };
+  std::ostringstream o;
+  o << "| " << (first ? md_cell(model_label(r)) : "") << " | " << md_cell(r.method)
+    << " | " << cell(m.conformality, 5) << " | " << cell(m.angle_distortion, 5) << " | "
+    << cell(m.l2_shear, 4) << " | " << cell(m.l2_stretch, 4) << " | "
+    << cell(m.log_area_distortion, 5) << " | "
+    << fmt_seconds(r.seconds) << " | "
+    << (h ? json_count(m.flipped) : "") << " | " << cell(m.qc_mean, 4) << " | "
+    << cell(m.qc_max, 3) << " | "
+    << (std::isfinite(r.peak_rss_mb) ? fmt_fixed(r.peak_rss_mb, 1) : "") << " | "
+    << (r.newton_iterations ? std::to_string(*r.newton_iterations) : "") << " | "
+    << md_cell(r.status) << " |\n";
+  std::cout << o.str() << std::flush;
+}
+
+std::string machine_description() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model;
+  int processors = 0;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("processor", 0) == 0) ++processors;
+    if (model.empty() && line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) {
+        model = line.substr(colon + 1);
+        model.erase(0, model.find_first_not_of(" \t"));
+      }
+    }
+  }
+  if (model.empty()) model = "unknown CPU";
+  if (processors == 0) processors = static_cast<int>(std::thread::hardware_concurrency());
+  return model + ", " + std::to_string(processors) + " logical cores";
+}
+
+std::string date_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
+  return buf;
+}
+
+// ------------------------------------------------------------------------------------------
+// --svg-panels: the UV layouts, recomputed in this process (no time limit) for the picture.
+// ------------------------------------------------------------------------------------------
+
+bool write_panels(const std::string& mesh_path, const Options& opt,
+                  const std::vector<Method>& registry) {
+  Mesh mesh;
+  std::string error;
+  if (!load_mesh(mesh_path, opt.subdivide, mesh, error)) {
+    std::cerr << "compare: --svg-panels: " << mesh_path << ": " << error << "\n";
+    return false;
+  }
+  const std::string skip = disk_check(mesh);
+  if (!skip.empty()) {
+    std::cerr << "compare: --svg-panels: " << mesh_path << ": " << skip << "\n";
+    return false;
+  }
+  std::vector<std::pair<std::string, ICM::IO::Uv_mesh>> panels;
+  for (const std::string& name : panel_methods) {
+    const auto it = std::find_if(registry.begin(), registry.end(),
+                                 [&](const Method& m) { return m.name == name; });
+    if (it == registry.end()) continue;
+    Mesh copy = mesh;
+    UV_map uvmap =
+        copy.add_property_map<vertex_descriptor, Point_2>("v:compare_uv", Point_2(0, 0)).first;
+    const halfedge_descriptor bhd = PMP::longest_border(copy).first;
+    const Run_result r = it->run(copy, bhd, uvmap);
+    if (!has_usable_uvs(r.code)) {
+      std::cerr << "compare: --svg-panels: " << name << " failed ("
+                << error_text(r.code)
+                << (r.message.empty() ? "" : "; " + r.message) << "), panel left out\n";
+      continue;
+    }
+    panels.emplace_back(name, ICM::IO::make_uv_mesh(copy, uvmap));
+  }
+  if (panels.empty()) {
+    std::cerr << "compare: --svg-panels: no method produced a layout\n";
+    return false;
+  }
+  if (!ICM::IO::write_uv_svg_panels(opt.svg_panels, panels, error)) {
+    std::cerr << "compare: --svg-panels: " << opt.svg_panels << ": " << error << "\n";
+    return false;
+  }
+  if (!opt.quiet) std::cerr << "compare: wrote " << opt.svg_panels << "\n";
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::signal(SIGPIPE, SIG_IGN);
+  const std::vector<Method> registry = make_registry();
+  const Options opt = parse_options(argc, argv, registry);
+
+  std::vector<const Method*> methods;
+  for (const Method& m : registry)
+    if (opt.methods.empty() ||
+        std::find(opt.methods.begin(), opt.methods.end(), m.name) != opt.methods.end())
+      methods.push_back(&m);
+  // Keep the order the user gave.
+  if (!opt.methods.empty()) {
+    methods.clear();
+    for (const std::string& name : opt.methods)
+      for (const Method& m : registry)
+        if (m.name == name &&
+            std::find(methods.begin(), methods.end(), &m) == methods.end())
+          methods.push_back(&m);
+  }
+
+  if (!opt.json) {
+    std::cout << "# Parameterization comparison\n\n"
+              << "Machine: " << machine_description() << "  \n"
+              << "Date: " << date_now() << "  \n"
+              << "Runs: "
+              << (opt.runs > 0 ? std::to_string(opt.runs) + " per method (median time)"
+                               : std::string("3 per method if one takes < 2 s, else 1 (median time)"))
+              << "; time limit " << fmt_seconds(opt.time_limit) << " s per run"
+              << (opt.subdivide > 0 ? "; Loop subdivision x" + std::to_string(opt.subdivide)
+                                    : std::string())
+              << "\n\n";
+    print_markdown_header();
+  }
+
+  int exit_status = 0;
+  std::string first_mesh_path;
+  for (const std::string& path : opt.meshes) {
+    Mesh mesh;
+    std::string error;
+    if (!load_mesh(path, opt.subdivide, mesh, error)) {
+      std::cerr << "compare: " << path << ": " << error << "\n";
+      exit_status = 1;
+      continue;
+    }
+    if (first_mesh_path.empty()) first_mesh_path = path;
+    Row base;
+    base.mesh = mesh_name(path);
+    base.vertices = num_vertices(mesh);
+    base.faces = num_faces(mesh);
+
+    const std::string skip = disk_check(mesh);
+    if (!skip.empty()) {
+      if (!opt.quiet) std::cerr << "compare: " << base.mesh << ": " << skip << "\n";
+      for (std::size_t i = 0; i < methods.size(); ++i) {
+        Row r = base;
+        r.method = methods[i]->name;
+        r.status = skip;
+        if (opt.json) print_json(r);
+        else if (i == 0) {
+          r.method = "(all)";
+          print_markdown_row(r, true);
+        }
+      }
+      continue;
+    }
+
+    bool first = true;
+    for (const Method* method : methods) {
+      if (!opt.quiet)
+        std::cerr << "compare: " << base.mesh << " (" << base.faces << " faces): "
+                  << method->name << " ..." << std::flush;
+      const Row row = run_method(mesh, *method, opt, base);
+      if (!opt.quiet)
+        std::cerr << " " << row.status
+                  << (std::isfinite(row.seconds) ? ", " + fmt_seconds(row.seconds) + " s" : "")
+                  << "\n";
+      if (opt.json) print_json(row);
+      else print_markdown_row(row, first);
+      first = false;
+    }
+  }
+
+  if (!opt.svg_panels.empty()) {
+    // Drawn after all timed runs, so that the parent's memory seen by later children stays small.
+    if (first_mesh_path.empty()) {
+      std::cerr << "compare: --svg-panels: no readable mesh\n";
+      exit_status = 1;
+    } else if (!write_panels(first_mesh_path, opt, registry)) {
+      exit_status = 1;
+    }
+  }
+  return exit_status;
+}

@@ -1,0 +1,135 @@
+#!/usr/bin/python3
+"""Table and plot of a scaling series written by benchmark/scaling.sh.
+
+Reads the JSON lines of `compare --json` (one object per mesh level and method), prints a
+Markdown table  faces | method | seconds | peak MB | Newton its | status  and, with --plot,
+draws time and peak memory against the number of faces on log-log axes (matplotlib; the
+format follows the file extension: .svg, .png, .pdf).
+
+usage: plot_scaling.py SERIES.jsonl [--table OUT.md] [--plot OUT.svg] [--title TEXT]
+"""
+
+import argparse
+import json
+import math
+import sys
+
+
+def load(path):
+    rows = []
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            line = line.strip()
+            if not line:
+                continue
+            try:
+                rows.append(json.loads(line))
+            except json.JSONDecodeError as e:
+                print(f"plot_scaling: {path}:{n}: not JSON ({e}), line skipped", file=sys.stderr)
+    return rows
+
+
+def fmt(x, spec):
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return ""
+    return format(x, spec)
+
+
+def fmt_seconds(x):
+    if x is None:
+        return ""
+    return f"{x:.3g}" if x < 10 else f"{x:.1f}"
+
+
+def table(rows):
+    out = ["| faces | method | seconds | peak MB | Newton its | status |",
+           "|---:|---|---:|---:|---:|---|"]
+    for r in sorted(rows, key=lambda r: (r.get("faces") or 0, r.get("method") or "")):
+        out.append("| {} | {} | {} | {} | {} | {} |".format(
+            r.get("faces", ""), r.get("method", ""), fmt_seconds(r.get("seconds")),
+            fmt(r.get("peak_rss_mb"), ".1f"),
+            "" if r.get("newton_iterations") is None else r["newton_iterations"],
+            str(r.get("status", "")).replace("|", "\\|")))
+    return "\n".join(out) + "\n"
+
+
+def plot(rows, path, title):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("plot_scaling: matplotlib is missing (apt-get install python3-matplotlib); "
+              "no plot written", file=sys.stderr)
+        return False
+
+    methods = []
+    for r in rows:
+        if r.get("method") not in methods:
+            methods.append(r.get("method"))
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    panels = [("seconds", "wall time of parameterize() (s)"),
+              ("peak_rss_mb", "peak resident memory (MB)")]
+    for ax, (key, label) in zip(axes, panels):
+        all_x = []
+        for m in methods:
+            pts = sorted((r["faces"], r[key]) for r in rows
+                         if r.get("method") == m and r.get("status") == "ok"
+                         and r.get(key) is not None and r.get("faces"))
+            if not pts:  # still listed, so that a method that never finished is not hidden
+                ax.plot([], [], marker="x", ls="none", label=f"{m}: no level finished")
+                continue
+            xs, ys = zip(*pts)
+            all_x.extend(xs)
+            # Levels that did not finish (timeout, crash, failure) are named in the legend.
+            bad = sorted((r["faces"], str(r.get("status"))) for r in rows
+                         if r.get("method") == m and r.get("status") != "ok"
+                         and not str(r.get("status", "")).startswith("skipped"))
+            name = m + "".join(f"; {st.split(':')[0]} at {f} faces" for f, st in bad)
+            ax.loglog(xs, ys, marker="o", label=name)
+        if all_x:
+            # Guide: linear growth through the geometric middle of the data.
+            x0, x1 = min(all_x), max(all_x)
+            ys_all = [r[key] for r in rows if r.get("status") == "ok" and r.get(key)]
+            if ys_all and x1 > x0:
+                ymid = math.exp(sum(math.log(y) for y in ys_all) / len(ys_all))
+                xmid = math.sqrt(x0 * x1)
+                ax.loglog([x0, x1], [ymid * x0 / xmid, ymid * x1 / xmid], ls="--",
+                          color="lightgray", label="∝ faces")
+        ax.set_xlabel("faces")
+        ax.set_ylabel(label)
+        ax.grid(True, which="both", ls=":", lw=0.5)
+        ax.legend(fontsize=8)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return True
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("series", help="JSON lines from compare --json")
+    ap.add_argument("--table", help="also write the Markdown table to this file")
+    ap.add_argument("--plot", help="write the log-log plot to this file (.svg, .png, .pdf)")
+    ap.add_argument("--title", default="", help="title of the plot")
+    a = ap.parse_args()
+
+    rows = load(a.series)
+    if not rows:
+        print(f"plot_scaling: {a.series}: no results", file=sys.stderr)
+        return 1
+    md = table(rows)
+    sys.stdout.write(md)
+    if a.table:
+        with open(a.table, "w", encoding="utf-8") as f:
+            f.write(md)
+    if a.plot and plot(rows, a.plot, a.title):
+        print(f"plot_scaling: wrote {a.plot}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,222 @@
+// Step 3: the inverse curvature map u = K^{-1}(k) (paper Algorithm 1), by Newton's method on
+// the dynamic Laplacian.
+//
+// The solver is stated for a free vertex set F: find u with K(u)_F = k_F while u stays fixed
+// off F. This is the gradient system of the discrete Ricci energy (eq. 4) restricted to F,
+// strictly convex as soon as one vertex is fixed, with Hessian Delta_FF. Algorithm 1 is the
+// case "all vertices but one", the free-boundary optimum the case F = non-singular vertices.
+
+#ifndef ICM_INVERSE_CURVATURE_MAP_H
+#define ICM_INVERSE_CURVATURE_MAP_H
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <Eigen/Core>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace ICM {
+
+struct Newton_options
+{
+  /// Stop when max_i |k_target_i - k_i| over the free vertices is below this (radians).
+  double tolerance = 1e-10;
+  int max_iterations = 100;
+  /// Halvings of the step before the line search gives up.
+  int max_line_search_steps = 60;
+  /// Largest change of any log radius in one step. Far from the solution Delta can be
+  /// nearly singular (circles that barely interact), and a full step then throws radii
+  /// apart by factors of e^40, where triangles degenerate in floating point. Near the
+  /// solution steps are tiny, so quadratic convergence is untouched.
+  double max_step = 1.0;
+};
+
+struct Newton_report
+{
+  bool converged = false;
+  int iterations = 0;
+  /// max |k_target - k| over the free vertices, before the first step and after each step.
+  std::vector<double> residual_history;
+  std::vector<double> step_lengths;
+  double seconds_curvature = 0, seconds_factorization = 0, seconds_solve = 0;
+  std::string message;
+
+  double final_residual() const { return residual_history.empty() ? 0.0 : residual_history.back(); }
+};
+
+/// Newton's method for K(u)_F = k_F with u fixed off F. The Laplacian pattern is analysed
+/// once at construction and every step only refactorizes numerically.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+class Inverse_curvature_map
+{
+public:
+  Inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric,
+                        const std::vector<char>& is_free)
+    : index_(index), curvature_(index, metric), laplacian_(index, is_free)
+  {}
+
+  Curvature_map<Metric>& curvature_map() { return curvature_; }
+  Dynamic_laplacian<SparseSolver>& laplacian() { return laplacian_; }
+  /// Curvature and weights at the last accepted u.
+  const Eigen::VectorXd& curvature() const { return k_; }
+  const std::vector<double>& weights() const { return w_; }
+
+  /// Moves `u` (free entries only) until K(u)_F = k_target_F.
+  Newton_report solve(const Eigen::VectorXd& k_target, Eigen::VectorXd& u,
+                      const Newton_options& options = Newton_options())
+  {
+    using Clock = std::chrono::steady_clock;
+    auto seconds_since = [](Clock::time_point t) {
+      return std::chrono::duration<double>(Clock::now() - t).count();
+    };
+    Newton_report report;
+    const int n = laplacian_.size();
+    Eigen::VectorXd residual(n), trial_residual(n), du(n), u_trial;
+
+    Clock::time_point t = Clock::now();
+    curvature_.evaluate(u, k_, &w_);
+    free_residual(k_target, k_, residual);
+    report.seconds_curvature += seconds_since(t);
+    report.residual_history.push_back(max_norm(residual));
+
+    while(report.residual_history.back() > options.tolerance)
+    {
+      if(report.iterations == options.max_iterations)
+      {
+        report.message = "Newton did not converge in " + std::to_string(options.max_iterations) +
+                         " iterations (curvature error " +
+                         std::to_string(report.residual_history.back()) + ")";
+        return report;
+      }
+      t = Clock::now();
+      laplacian_.assemble(w_);
+      if(!laplacian_.factorize())
+      {
+        report.message = "the dynamic Laplacian could not be factorized (not positive definite)";
+        return report;
+      }
+      report.seconds_factorization += seconds_since(t);
+      t = Clock::now();
+      du = laplacian_.solve(residual);
+      report.seconds_solve += seconds_since(t);
+      if(!du.allFinite())
+      {
+        report.message = "the Newton step is not finite";
+        return report;
+      }
+
+      // Line search on the Ricci energy E, convex along the line, whose derivative in the
+      // step direction is g(alpha) = -residual(alpha) . du. A step is accepted when the
+      // residual shrinks, or when g is still <= 0 (E decreased all the way): either way E
+      // went down, which is what guarantees convergence to the unique solution.
+      t = Clock::now();
+      const double norm = residual.norm();
+      const double largest = du.size() ? du.cwiseAbs().maxCoeff() : 0.0;
+      double alpha = largest > options.max_step ? options.max_step / largest : 1.0;
+      int halvings = 0;
+      for(;; ++halvings)
+      {
+        u_trial = u;
+        for(int i = 0; i < n; ++i)
+          u_trial[laplacian_.vertex(i)] += alpha * du[i];
+        curvature_.evaluate(u_trial, k_trial_, &w_trial_);
+        free_residual(k_target, k_trial_, trial_residual);
+        const bool finite = trial_residual.allFinite();
+        if(finite && (trial_residual.norm() < norm || trial_residual.dot(du) >= 0.0))
+          break;
+        if(halvings == options.max_line_search_steps)
+        {
+          report.seconds_curvature += seconds_since(t);
+          report.message = "the Newton line search stalled (curvature error " +
+                           std::to_string(report.residual_history.back()) +
+                           "): the target curvature may be outside the image of K";
+          return report;
+        }
+        alpha *= 0.5;
+      }
+      report.seconds_curvature += seconds_since(t);
+      u.swap(u_trial);
+      k_.swap(k_trial_);
+      w_.swap(w_trial_);
+      residual.swap(trial_residual);
+      ++report.iterations;
+      report.step_lengths.push_back(alpha);
+#ifdef ICM_DEBUG_NEWTON
+      {
+        double wmin = *std::min_element(w_.begin(), w_.end());
+        std::fprintf(stderr, "it %d alpha %g max|du| %g wmin %g res %g\n", report.iterations, alpha, du.cwiseAbs().maxCoeff(), wmin, max_norm(residual));
+      }
+#endif
+      report.residual_history.push_back(max_norm(residual));
+    }
+    report.converged = true;
+    return report;
+  }
+
+private:
+  void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k,
+                     Eigen::VectorXd& residual) const
+  {
+    for(int i = 0; i < laplacian_.size(); ++i)
+    {
+      const int v = laplacian_.vertex(i);
+      residual[i] = k_target[v] - k[v];
+    }
+  }
+
+  static double max_norm(const Eigen::VectorXd& x)
+  {
+    return x.size() == 0 ? 0.0 : x.cwiseAbs().maxCoeff();
+  }
+
+  const internal::Mesh_index& index_;
+  Curvature_map<Metric> curvature_;
+  Dynamic_laplacian<SparseSolver> laplacian_;
+  Eigen::VectorXd k_, k_trial_;
+  std::vector<double> w_, w_trial_;
+};
+
+/// Algorithm 1: the metric of the conformal class whose curvature is `k_target` everywhere.
+/// `k_target` must satisfy Gauss-Bonnet (sum = 2 pi chi). `u` starts at `metric.u0` when
+/// empty; on return it is normalised so that sum(u - u0) = 0.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+Newton_report inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric,
+                                    const Eigen::VectorXd& k_target, Eigen::VectorXd& u,
+                                    const Newton_options& options = Newton_options())
+{
+  Newton_report report;
+  const int nv = index.number_of_vertices();
+  if(k_target.size() != nv)
+  {
+    report.message = "the target curvature has " + std::to_string(k_target.size()) +
+                     " entries for " + std::to_string(nv) + " vertices";
+    return report;
+  }
+  const double defect = gauss_bonnet_defect(index, k_target);
+  if(!(std::abs(defect) <= 1e-8 * std::max(1, nv)))
+  {
+    report.message = "the target curvature violates Gauss-Bonnet: its sum differs from 2 pi chi by " +
+                     std::to_string(defect);
+    return report;
+  }
+  if(u.size() != nv)
+    u = metric.u0;
+  // The constant vector spans the kernel of Delta: pinning one vertex removes it, and the
+  // pinned equation then holds by Gauss-Bonnet.
+  std::vector<char> is_free(nv, 1);
+  is_free[0] = 0;
+  Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, is_free);
+  report = solver.solve(k_target, u, options);
+  u.array() -= (u - metric.u0).mean();
+  return report;
+}
+
+} // namespace ICM
+
+#endif // ICM_INVERSE_CURVATURE_MAP_H

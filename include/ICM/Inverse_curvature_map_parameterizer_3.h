@@ -1,0 +1,245 @@
+// The CGAL-facing parameterizer: steps 0-7 of the pipeline behind CGAL's `Parameterizer_3`
+// concept, so that
+//   CGAL::Surface_mesh_parameterization::parameterize(mesh, parameterizer, bhd, uvmap)
+// computes the conformal parameterization with least area distortion (the minimum of the
+// curvature entropy with a free boundary, paper Thm 3.5).
+
+#ifndef ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
+#define ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Layout.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Default.h>
+#include <CGAL/Surface_mesh_parameterization/Error_code.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ICM {
+
+/// How the optimal metric is computed.
+enum class Optimum_method
+{
+  Newton,              ///< Dirichlet problem u_S = u0_S, K(u)_N = 0 by Newton (default)
+  Curvature_diffusion  ///< the paper's Algorithm 5 (slow; for validation)
+};
+
+/// Options of `Inverse_curvature_map_parameterizer_3`.
+struct Parameterization_options
+{
+  Newton_options newton;                  ///< tolerance on max |k| over interior vertices, caps
+  Diffusion_options diffusion;            ///< used with `Optimum_method::Curvature_diffusion`
+  Optimum_method optimum = Optimum_method::Newton;
+  Layout_method layout = Layout_method::Automatic;
+  int harmonic_layout_min_faces = 30000;  ///< `Automatic` switches to the harmonic layout here
+  /// A layout whose edge lengths differ from the metric's by more than this fails.
+  double max_layout_length_error = 1e-6;
+  /// Called at the start of each stage with its name ("index", "metric", "optimum", "layout").
+  std::function<void(const std::string&)> progress;
+};
+
+/// What the last `parameterize()` did: sizes, topology, convergence, timings, the reason of
+/// any failure.
+struct Parameterization_report
+{
+  CGAL::Surface_mesh_parameterization::Error_code status =
+    CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH;
+  std::string message;           ///< empty on success, else the human reason
+  int vertices = 0, faces = 0, edges = 0, boundary_loops = 0, genus = 0, euler_characteristic = 0;
+  int clamped_edges = 0;         ///< edges whose intersection angle was clamped to pi/2
+  int newton_iterations = 0;
+  std::vector<double> residual_history;  ///< max |k| over interior vertices per iteration
+  double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
+  double max_layout_length_error = 0;    ///< relative, UV edge length vs metric
+  int flipped_faces = 0;
+  std::string layout;                    ///< "propagation" or "harmonic"
+  double seconds_index = 0, seconds_metric = 0, seconds_optimum = 0, seconds_layout = 0,
+         seconds_total = 0;
+};
+
+/// \brief Conformal parameterization with least area distortion by the inverse curvature map.
+///
+/// Model of CGAL's `Parameterizer_3`. The input is the connected component of the border
+/// halfedge `bhd`; it must be a topological disk (one border, genus 0): a `CGAL::Seam_mesh`
+/// whose seams cut a surface into a disk qualifies. Every boundary vertex is singular (free
+/// boundary) and every interior vertex flat; the result is the minimum of the curvature
+/// entropy, laid out isometrically. All UVs are written and every vertex is marked
+/// parameterized.
+///
+/// CGAL's `parameterize()` takes the parameterizer by value; copies share one report, so
+/// `report()` on the object passed in describes the last run.
+///
+/// \tparam TriangleMesh a model of `FaceGraph`
+/// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is CHOLMOD's supernodal
+///         LL^T when SuiteSparse was found, Eigen's `SimplicialLDLT` otherwise.
+template <class TriangleMesh, class SparseSolver = CGAL::Default>
+class Inverse_curvature_map_parameterizer_3
+{
+public:
+  using Error_code = CGAL::Surface_mesh_parameterization::Error_code;
+  using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
+  using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+
+  explicit Inverse_curvature_map_parameterizer_3(
+    const Parameterization_options& options = Parameterization_options())
+    : options_(options), report_(std::make_shared<Parameterization_report>())
+  {}
+
+  Parameterization_options& options() { return options_; }
+  const Parameterization_options& options() const { return options_; }
+  const Parameterization_report& report() const { return *report_; }
+
+  /// Parameterizes the component of `bhd`. `vimap` and `vpmap` follow CGAL's concept: the
+  /// index map is not needed (the mesh is indexed once, internally) and `vpmap` is set to
+  /// true for every vertex that receives a UV.
+  template <class VertexUVMap, class VertexIndexMap, class VertexParameterizedMap>
+  Error_code parameterize(TriangleMesh& mesh, halfedge_descriptor bhd, VertexUVMap uvmap,
+                          VertexIndexMap /* vimap */, VertexParameterizedMap vpmap)
+  {
+    using namespace CGAL::Surface_mesh_parameterization;
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+    Clock::time_point t = start;
+    auto lap = [&t]() {
+      const Clock::time_point now = Clock::now();
+      const double s = std::chrono::duration<double>(now - t).count();
+      t = now;
+      return s;
+    };
+    Parameterization_report& report = *report_;
+    report = Parameterization_report();
+    auto fail = [&](Error_code code, const std::string& why) {
+      report.status = code;
+      report.message = why;
+      report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+      return code;
+    };
+
+    // Step 0: index the component once.
+    stage("index");
+    if(bhd == boost::graph_traits<TriangleMesh>::null_halfedge())
+      return fail(ERROR_WRONG_PARAMETER, "no border halfedge given");
+    if(!is_border(bhd, mesh))
+      return fail(ERROR_WRONG_PARAMETER, "the halfedge given is not on a border");
+    internal::Mesh_index index;
+    std::vector<vertex_descriptor> vertices;
+    const internal::Index_status indexed =
+      internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh),
+                           index, vertices);
+    report.vertices = index.number_of_vertices();
+    report.faces = index.number_of_faces();
+    report.edges = index.number_of_edges();
+    report.boundary_loops = index.number_of_boundary_loops();
+    report.euler_characteristic = index.euler_characteristic();
+    report.genus = index.genus();
+    report.seconds_index = lap();
+    if(!indexed.ok())
+      return fail(indexed.code, indexed.message);
+    if(!index.is_disk())
+      return fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
+
+    // Step 1: the initial circle packing metric.
+    stage("metric");
+    const Circle_packing_metric metric = initial_circle_packing_metric(index);
+    report.clamped_edges = metric.clamped_edges;
+    report.seconds_metric = lap();
+
+    // Step 5: the free-boundary optimum (S = border, N = interior).
+    stage("optimum");
+    std::vector<char> is_interior(index.number_of_vertices());
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+      is_interior[v] = !index.is_boundary_vertex[v];
+    Inverse_curvature_map<Solver> solver(index, metric, is_interior);
+    Eigen::VectorXd u;
+    if(options_.optimum == Optimum_method::Newton)
+    {
+      const Newton_report newton = free_boundary_optimum(solver, metric, u, options_.newton);
+      report.newton_iterations = newton.iterations;
+      report.residual_history = newton.residual_history;
+      report.max_curvature_error = newton.final_residual();
+      if(!newton.converged)
+        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, newton.message);
+    }
+    else
+    {
+      const Diffusion_report diffusion =
+        free_boundary_curvature_diffusion(index, metric, boundary_singular_set(index), u,
+                                          options_.diffusion);
+      report.max_curvature_error = diffusion.final_residual;
+      if(!diffusion.converged)
+        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, diffusion.message);
+    }
+    report.seconds_optimum = lap();
+
+    // Step 7: isometric layout of the flat metric, then the checks every layout must pass.
+    stage("layout");
+    Eigen::VectorXd k;
+    std::vector<double> w;
+    Curvature_map<Circle_packing_metric>& curvature = solver.curvature_map();
+    curvature.evaluate(u, k, &w);
+    const std::vector<double>& lengths = curvature.lengths();
+    const bool harmonic =
+      options_.layout == Layout_method::Harmonic ||
+      (options_.layout == Layout_method::Automatic &&
+       index.number_of_faces() >= options_.harmonic_layout_min_faces);
+    std::vector<Uv> uv;
+    if(harmonic)
+    {
+      report.layout = "harmonic";
+      std::string why;
+      if(!layout_harmonic(index, lengths, k, w, solver.laplacian(), uv, why))
+        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, why);
+    }
+    else
+    {
+      report.layout = "propagation";
+      uv = layout_by_propagation(index, lengths);
+    }
+    const Layout_check check = check_layout(index, lengths, uv);
+    report.flipped_faces = check.flipped_faces;
+    report.max_layout_length_error = check.max_relative_length_error;
+    report.seconds_layout = lap();
+    if(check.flipped_faces > 0)
+      return fail(ERROR_NO_1_TO_1_MAPPING,
+                  std::to_string(check.flipped_faces) + " faces are flipped in the layout");
+    if(!(check.max_relative_length_error <= options_.max_layout_length_error))
+      return fail(ERROR_NO_1_TO_1_MAPPING,
+                  "the layout does not reproduce the metric (relative edge length error " +
+                    std::to_string(check.max_relative_length_error) + ")");
+
+    using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+    {
+      put(uvmap, vertices[v], Uv_point(uv[v][0], uv[v][1]));
+      put(vpmap, vertices[v], true);
+    }
+    report.status = OK;
+    report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+    return OK;
+  }
+
+private:
+  void stage(const std::string& name) const
+  {
+    if(options_.progress)
+      options_.progress(name);
+  }
+
+  Parameterization_options options_;
+  std::shared_ptr<Parameterization_report> report_;
+};
+
+} // namespace ICM
+
+#endif // ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H

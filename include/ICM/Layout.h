@@ -1,0 +1,245 @@
+// Step 7: isometric layout of a flat metric in the plane (paper Sec. III-F).
+//
+// Two methods:
+// - propagation: place a central face, then unfold neighbours breadth first, each new vertex
+//   from the two already placed ones and the metric's corner angle (the paper, for small
+//   meshes: rounding error grows with the depth of the face tree);
+// - harmonic: by Lemma 5.4 the isometric embedding of a flat circle packing metric is
+//   harmonic for the dynamic Laplacian of that metric. The border is walked once with the
+//   metric's edge lengths and turning angles (the boundary curvatures), then the interior is
+//   the solution of Delta_NN x = b — one global solve with the Newton system's own
+//   pattern, so no error accumulates across the mesh.
+// Both require a topological disk whose metric is flat at every interior vertex.
+
+#ifndef ICM_LAYOUT_H
+#define ICM_LAYOUT_H
+
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <queue>
+#include <string>
+#include <vector>
+
+namespace ICM {
+
+using Uv = std::array<double, 2>;
+
+enum class Layout_method
+{
+  Automatic,   ///< propagation below `harmonic_layout_min_faces` faces, harmonic above
+  Propagation,
+  Harmonic
+};
+
+/// Per-face corner angles of the metric given by edge lengths.
+inline std::vector<Triangle_angles> metric_angles(const internal::Mesh_index& index,
+                                                  const std::vector<double>& lengths)
+{
+  std::vector<Triangle_angles> angles(index.number_of_faces());
+  for(int f = 0; f < index.number_of_faces(); ++f)
+  {
+    const auto& e = index.face_edges[f];
+    angles[f] = triangle_angles({lengths[e[0]], lengths[e[1]], lengths[e[2]]});
+  }
+  return angles;
+}
+
+/// The face farthest (in face hops) from the border, or face 0 on a closed mesh: unfolding
+/// from the middle keeps the face tree shallow.
+inline int central_face(const internal::Mesh_index& index)
+{
+  const int nf = index.number_of_faces();
+  std::vector<int> depth(nf, -1);
+  std::queue<int> queue;
+  for(int e = 0; e < index.number_of_edges(); ++e)
+    if(index.edge_faces[e][1] < 0 && depth[index.edge_faces[e][0]] < 0)
+    {
+      depth[index.edge_faces[e][0]] = 0;
+      queue.push(index.edge_faces[e][0]);
+    }
+  int last = 0;
+  while(!queue.empty())
+  {
+    last = queue.front();
+    queue.pop();
+    for(int e : index.face_edges[last])
+      for(int g : index.edge_faces[e])
+        if(g >= 0 && depth[g] < 0)
+        {
+          depth[g] = depth[last] + 1;
+          queue.push(g);
+        }
+  }
+  return last;
+}
+
+/// Unfolds the faces breadth first from the central face. Vertex c of a face entered across
+/// its edge (a, b) — in the face's orientation — is a + l_ac R(theta_a) (b - a)/|b - a|, so
+/// every face keeps the input orientation (counter-clockwise = positive area).
+inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
+                                             const std::vector<double>& lengths)
+{
+  const int nf = index.number_of_faces();
+  const std::vector<Triangle_angles> angles = metric_angles(index, lengths);
+  std::vector<Uv> uv(index.number_of_vertices(), Uv{0.0, 0.0});
+  std::vector<char> placed(index.number_of_vertices(), 0), reached(nf, 0);
+  if(nf == 0)
+    return uv;
+
+  const int root = central_face(index);
+  {
+    const auto& v = index.faces[root];
+    const auto& e = index.face_edges[root];
+    const double l01 = lengths[e[2]], l02 = lengths[e[1]], theta0 = angles[root].angle[0];
+    uv[v[0]] = {0.0, 0.0};
+    uv[v[1]] = {l01, 0.0};
+    uv[v[2]] = {l02 * std::cos(theta0), l02 * std::sin(theta0)};
+    placed[v[0]] = placed[v[1]] = placed[v[2]] = 1;
+  }
+  std::queue<int> queue;
+  queue.push(root);
+  reached[root] = 1;
+  while(!queue.empty())
+  {
+    const int f = queue.front();
+    queue.pop();
+    for(int e : index.face_edges[f])
+      for(int g : index.edge_faces[e])
+      {
+        if(g < 0 || reached[g])
+          continue;
+        reached[g] = 1;
+        queue.push(g);
+        int c = 0; // corner of g opposite the shared edge
+        while(index.face_edges[g][c] != e)
+          ++c;
+        const int a = index.faces[g][(c + 1) % 3], b = index.faces[g][(c + 2) % 3];
+        const int third = index.faces[g][c];
+        if(placed[third])
+          continue;
+        const double theta = angles[g].angle[(c + 1) % 3];
+        const double l_ac = lengths[index.face_edges[g][(c + 2) % 3]];
+        const double dx = uv[b][0] - uv[a][0], dy = uv[b][1] - uv[a][1];
+        const double scale = l_ac / std::hypot(dx, dy);
+        const double cs = std::cos(theta) * scale, sn = std::sin(theta) * scale;
+        uv[third] = {uv[a][0] + cs * dx - sn * dy, uv[a][1] + sn * dx + cs * dy};
+        placed[third] = 1;
+      }
+  }
+  return uv;
+}
+
+/// Walks the single border loop counter-clockwise with the metric's edge lengths, turning
+/// by the boundary curvature k_i (the exterior angle) at each vertex. The closing gap, zero
+/// up to rounding when sum k = 2 pi, is spread along the loop.
+inline void layout_border(const internal::Mesh_index& index, const std::vector<double>& lengths,
+                          const Eigen::VectorXd& k, std::vector<Uv>& uv)
+{
+  // Border halfedges leave the interior on their right: walk the loop backwards.
+  const std::vector<int>& loop = index.boundary_loops.front();
+  const std::vector<int>& loop_edges = index.boundary_loop_edges.front();
+  const int m = static_cast<int>(loop.size());
+  double heading = 0, x = 0, y = 0;
+  std::vector<Uv> walk(m + 1);
+  for(int s = 0; s < m; ++s)
+  {
+    const int i = (m - s) % m;                 // current vertex, loop[0] first
+    const int previous = (i - 1 + m) % m;      // next vertex of the backward walk
+    walk[s] = {x, y};
+    const double l = lengths[loop_edges[previous]];
+    x += l * std::cos(heading);
+    y += l * std::sin(heading);
+    heading += k[loop[previous]];
+  }
+  walk[m] = {x, y};
+  for(int s = 0; s < m; ++s)
+  {
+    const double t = static_cast<double>(s) / m;
+    uv[loop[(m - s) % m]] = {walk[s][0] - t * walk[m][0], walk[s][1] - t * walk[m][1]};
+  }
+}
+
+/// Harmonic layout: border walk, then Delta_NN x_N = sum_{j in border} w_ij x_j for the
+/// interior. `laplacian` must have the interior vertices as its free set; it is assembled
+/// and factorized here with the weights `w` of the final metric.
+template <class SparseSolver>
+bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double>& lengths,
+                     const Eigen::VectorXd& k, const std::vector<double>& w,
+                     Dynamic_laplacian<SparseSolver>& laplacian, std::vector<Uv>& uv,
+                     std::string& message)
+{
+  uv.assign(index.number_of_vertices(), Uv{0.0, 0.0});
+  if(index.number_of_boundary_loops() != 1)
+  {
+    message = "the harmonic layout needs exactly one boundary loop";
+    return false;
+  }
+  layout_border(index, lengths, k, uv);
+  const int n = laplacian.size();
+  if(n == 0)
+    return true;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int a = index.edges[e][0], b = index.edges[e][1];
+    const int ia = laplacian.free_index(a), ib = laplacian.free_index(b);
+    if(ia >= 0 && ib < 0)
+      rhs.row(ia) += w[e] * Eigen::RowVector2d(uv[b][0], uv[b][1]);
+    if(ib >= 0 && ia < 0)
+      rhs.row(ib) += w[e] * Eigen::RowVector2d(uv[a][0], uv[a][1]);
+  }
+  laplacian.assemble(w);
+  if(!laplacian.factorize())
+  {
+    message = "the layout Laplacian could not be factorized";
+    return false;
+  }
+  const Eigen::MatrixXd x = laplacian.solve(rhs);
+  if(!x.allFinite())
+  {
+    message = "the harmonic layout produced non-finite coordinates";
+    return false;
+  }
+  for(int i = 0; i < n; ++i)
+    uv[laplacian.vertex(i)] = {x(i, 0), x(i, 1)};
+  return true;
+}
+
+/// What every layout is checked for.
+struct Layout_check
+{
+  int flipped_faces = 0;                  ///< faces with non-positive signed area
+  double max_relative_length_error = 0;   ///< max_e |uv length / metric length - 1|
+};
+
+inline Layout_check check_layout(const internal::Mesh_index& index,
+                                 const std::vector<double>& lengths, const std::vector<Uv>& uv)
+{
+  Layout_check check;
+  for(const auto& f : index.faces)
+  {
+    const Uv &a = uv[f[0]], &b = uv[f[1]], &c = uv[f[2]];
+    const double twice_area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if(!(twice_area > 0))
+      ++check.flipped_faces;
+  }
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const Uv &a = uv[index.edges[e][0]], &b = uv[index.edges[e][1]];
+    const double error = std::abs(std::hypot(a[0] - b[0], a[1] - b[1]) / lengths[e] - 1.0);
+    check.max_relative_length_error =
+      std::max(check.max_relative_length_error, std::isfinite(error) ? error : HUGE_VAL);
+  }
+  return check;
+}
+
+} // namespace ICM
+
+#endif // ICM_LAYOUT_H

@@ -1,0 +1,275 @@
+// Step 0 of the pipeline: read a FaceGraph once into flat index arrays.
+//
+// Everything numeric downstream (metric, curvature, Newton, layout) runs on these arrays and
+// never touches the graph again; the graph is only visited here and when UVs are written back.
+
+#ifndef ICM_INTERNAL_MESH_INDEX_H
+#define ICM_INTERNAL_MESH_INDEX_H
+
+#include <CGAL/Surface_mesh_parameterization/Error_code.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace ICM {
+namespace internal {
+
+/// Compact, read-only description of one connected triangle mesh.
+/// Faces keep the orientation of the input; corner `c` of face `f` is `faces[f][c]`, and
+/// `face_edges[f][c]` is the edge opposite that corner.
+struct Mesh_index
+{
+  std::vector<std::array<double, 3>> points;     // per vertex
+  std::vector<std::array<int, 3>> faces;         // vertex indices, input orientation
+  std::vector<std::array<int, 3>> face_edges;    // edge opposite each corner
+  std::vector<std::array<int, 2>> edges;         // endpoints, first < second
+  std::vector<std::array<int, 2>> edge_faces;    // incident faces, second = -1 on the border
+  std::vector<char> is_boundary_vertex;
+  std::vector<std::vector<int>> boundary_loops;  // vertices in the order of the border halfedges
+  std::vector<std::vector<int>> boundary_loop_edges; // edge from loop[i] to loop[i+1]
+
+  int number_of_vertices() const { return static_cast<int>(points.size()); }
+  int number_of_faces() const { return static_cast<int>(faces.size()); }
+  int number_of_edges() const { return static_cast<int>(edges.size()); }
+  int number_of_boundary_loops() const { return static_cast<int>(boundary_loops.size()); }
+  int euler_characteristic() const
+  {
+    return number_of_vertices() - number_of_edges() + number_of_faces();
+  }
+  /// Genus of the (connected, orientable) surface: chi = 2 - 2g - b.
+  int genus() const { return (2 - euler_characteristic() - number_of_boundary_loops()) / 2; }
+  bool is_disk() const { return number_of_boundary_loops() == 1 && genus() == 0; }
+};
+
+/// Outcome of indexing: CGAL's error code and the human reason.
+struct Index_status
+{
+  CGAL::Surface_mesh_parameterization::Error_code code = CGAL::Surface_mesh_parameterization::OK;
+  std::string message;
+  bool ok() const { return code == CGAL::Surface_mesh_parameterization::OK; }
+};
+
+/// "3 boundary loops, genus 0" — the phrase every topology error uses.
+inline std::string describe_topology(const Mesh_index& index)
+{
+  std::ostringstream out;
+  out << index.number_of_boundary_loops() << " boundary loop"
+      << (index.number_of_boundary_loops() == 1 ? "" : "s") << ", genus " << index.genus();
+  return out.str();
+}
+
+inline double triangle_area(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                            const std::array<double, 3>& c)
+{
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+}
+
+inline double squared_distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// Builds edges, edge-face incidence, boundary flags and loops from `index.faces`.
+/// Edges come from sorting the corner pairs, so nothing here depends on the graph type.
+/// Fails on a non-manifold edge or vertex, which a halfedge graph can still encode at vertices.
+inline Index_status build_connectivity(Mesh_index& index)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  const int nf = index.number_of_faces();
+  const int nv = index.number_of_vertices();
+
+  // (min vertex, max vertex, face, corner opposite the edge)
+  std::vector<std::array<int, 4>> sides;
+  sides.reserve(3 * static_cast<std::size_t>(nf));
+  for(int f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const int a = index.faces[f][(c + 1) % 3], b = index.faces[f][(c + 2) % 3];
+      sides.push_back({std::min(a, b), std::max(a, b), f, c});
+    }
+  std::sort(sides.begin(), sides.end());
+
+  index.edges.clear();
+  index.edge_faces.clear();
+  index.face_edges.assign(nf, {-1, -1, -1});
+  for(std::size_t s = 0; s < sides.size();)
+  {
+    std::size_t t = s + 1;
+    while(t < sides.size() && sides[t][0] == sides[s][0] && sides[t][1] == sides[s][1])
+      ++t;
+    if(t - s > 2)
+      return {ERROR_NON_TRIANGULAR_MESH, "non-manifold edge shared by " + std::to_string(t - s) +
+                                           " faces"};
+    const int e = index.number_of_edges();
+    index.edges.push_back({sides[s][0], sides[s][1]});
+    index.edge_faces.push_back({sides[s][2], t - s == 2 ? sides[s + 1][2] : -1});
+    for(std::size_t r = s; r < t; ++r)
+      index.face_edges[sides[r][2]][sides[r][3]] = e;
+    s = t;
+  }
+
+  // A manifold vertex has one fan of faces: #edges == #faces inside, #faces + 1 on the border.
+  std::vector<int> vertex_faces(nv, 0), vertex_edges(nv, 0), border_out(nv, -1),
+    border_out_edge(nv, -1), border_out_count(nv, 0);
+  for(const auto& f : index.faces)
+    for(int v : f)
+      ++vertex_faces[v];
+  index.is_boundary_vertex.assign(nv, 0);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    ++vertex_edges[index.edges[e][0]];
+    ++vertex_edges[index.edges[e][1]];
+    if(index.edge_faces[e][1] >= 0)
+      continue;
+    // The border halfedge runs opposite to the face's own orientation of the edge.
+    const int f = index.edge_faces[e][0];
+    int c = 0;
+    while(index.face_edges[f][c] != e)
+      ++c;
+    const int from = index.faces[f][(c + 2) % 3], to = index.faces[f][(c + 1) % 3];
+    border_out[from] = to;
+    border_out_edge[from] = e;
+    ++border_out_count[from];
+    index.is_boundary_vertex[from] = index.is_boundary_vertex[to] = 1;
+  }
+  for(int v = 0; v < nv; ++v)
+  {
+    const int expected = vertex_faces[v] + (index.is_boundary_vertex[v] ? 1 : 0);
+    if(vertex_faces[v] == 0 || vertex_edges[v] != expected || border_out_count[v] > 1)
+      return {ERROR_NON_TRIANGULAR_MESH,
+              "non-manifold vertex " + std::to_string(v) + " (its faces form more than one fan)"};
+  }
+
+  index.boundary_loops.clear();
+  index.boundary_loop_edges.clear();
+  std::vector<char> visited(nv, 0);
+  for(int v = 0; v < nv; ++v)
+  {
+    if(border_out[v] < 0 || visited[v])
+      continue;
+    std::vector<int> loop, loop_edges;
+    for(int w = v; !visited[w]; w = border_out[w])
+    {
+      visited[w] = 1;
+      loop.push_back(w);
+      loop_edges.push_back(border_out_edge[w]);
+    }
+    index.boundary_loops.push_back(std::move(loop));
+    index.boundary_loop_edges.push_back(std::move(loop_edges));
+  }
+  return {};
+}
+
+/// Checks the geometry the numeric core relies on: finite coordinates, no zero-area face.
+inline Index_status check_geometry(const Mesh_index& index)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    for(double x : index.points[v])
+      if(!std::isfinite(x))
+        return {ERROR_WRONG_PARAMETER,
+                "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
+  int degenerate = 0, first = -1;
+  for(int f = 0; f < index.number_of_faces(); ++f)
+  {
+    const auto& p = index.points;
+    const auto& t = index.faces[f];
+    const double longest = std::max({squared_distance(p[t[0]], p[t[1]]),
+                                     squared_distance(p[t[1]], p[t[2]]),
+                                     squared_distance(p[t[2]], p[t[0]])});
+    // Relative to the face's own size: a sliver is fine, a face with no area is not.
+    if(!(triangle_area(p[t[0]], p[t[1]], p[t[2]]) > 1e-14 * longest))
+    {
+      if(first < 0)
+        first = f;
+      ++degenerate;
+    }
+  }
+  if(degenerate > 0)
+    return {ERROR_WRONG_PARAMETER, std::to_string(degenerate) +
+                                     " degenerate (zero-area) face(s), the first is face " +
+                                     std::to_string(first)};
+  return {};
+}
+
+/// Indexes the connected component of `mesh` that contains face `seed`, as CGAL's
+/// parameterizers do with the component of their border halfedge.
+/// `vertices` receives the descriptor of each compact vertex index, so results can be written
+/// back through any vertex property map.
+template <class TriangleMesh, class VertexPointMap>
+Index_status index_mesh(const TriangleMesh& mesh,
+                        typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
+                        VertexPointMap vpm, Mesh_index& index,
+                        std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&
+                          vertices)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+
+  index = Mesh_index();
+  vertices.clear();
+  if(faces(mesh).empty() || seed == boost::graph_traits<TriangleMesh>::null_face())
+    return {ERROR_EMPTY_MESH, "the mesh has no faces"};
+
+  std::vector<face_descriptor> component;
+  CGAL::Polygon_mesh_processing::connected_component(seed, mesh, std::back_inserter(component));
+
+  using Vertex_int_tag = CGAL::dynamic_vertex_property_t<int>;
+  auto local = get(Vertex_int_tag(), mesh);
+  // Dynamic maps start with an unspecified value: mark every vertex of the component unseen.
+  for(face_descriptor f : component)
+    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
+      put(local, v, -1);
+
+  index.faces.reserve(component.size());
+  for(face_descriptor f : component)
+  {
+    std::array<int, 3> tri{};
+    int corners = 0;
+    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
+    {
+      if(corners == 3)
+        return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with more than 3 sides"};
+      int id = get(local, v);
+      if(id < 0)
+      {
+        id = static_cast<int>(vertices.size());
+        put(local, v, id);
+        vertices.push_back(v);
+        const auto& p = get(vpm, v);
+        index.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()),
+                                CGAL::to_double(p.z())});
+      }
+      tri[corners++] = id;
+    }
+    if(corners != 3)
+      return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with fewer than 3 sides"};
+    index.faces.push_back(tri);
+  }
+
+  Index_status status = build_connectivity(index);
+  if(!status.ok())
+    return status;
+  return check_geometry(index);
+}
+
+} // namespace internal
+} // namespace ICM
+
+#endif // ICM_INTERNAL_MESH_INDEX_H

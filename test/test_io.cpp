@@ -1,0 +1,831 @@
+// Tests of the output side: Uv_mesh extraction from Surface_mesh, Polyhedron_3 and Seam_mesh,
+// the OBJ and SVG writers, and the atomic file replacement they rely on.
+
+#include <ICM/IO/Uv_mesh.h>
+#include <ICM/IO/write_uv_obj.h>
+#include <ICM/IO/write_uv_svg.h>
+#include <ICM/internal/Atomic_file.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/Seam_mesh.h>
+
+#include <boost/property_map/property_map.hpp>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point_2 = Kernel::Point_2;
+using Point_3 = Kernel::Point_3;
+using Surface_mesh = CGAL::Surface_mesh<Point_3>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+namespace fs = std::filesystem;
+
+// A fresh directory under the system temporary directory, removed with its content.
+class Temp_dir
+{
+public:
+  Temp_dir()
+  {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("icm_test_io_" + std::to_string(ICM::internal::current_process_id()) + "_" +
+             std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~Temp_dir()
+  {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::size_t number_of_entries() const
+  {
+    std::size_t n = 0;
+    for(auto it = fs::directory_iterator(path_); it != fs::directory_iterator(); ++it)
+      ++n;
+    return n;
+  }
+  const fs::path& path() const { return path_; }
+
+private:
+  fs::path path_;
+};
+
+std::string read_text(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const std::string& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::size_t count_occurrences(const std::string& text, const std::string& what)
+{
+  std::size_t n = 0;
+  for(std::size_t pos = text.find(what); pos != std::string::npos;
+      pos = text.find(what, pos + what.size()))
+    ++n;
+  return n;
+}
+
+// The 3x3 grid of vertices (i, j, 0), i, j in {0, 1, 2}, vertex j*3+i, 8 counterclockwise
+// triangles. Works for any mutable FaceGraph. Returns the vertices in creation order.
+template <class Mesh>
+std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor> build_grid(Mesh& mesh)
+{
+  using vertex_descriptor = typename boost::graph_traits<Mesh>::vertex_descriptor;
+  auto vpm = get(CGAL::vertex_point, mesh);
+  std::vector<vertex_descriptor> v;
+  for(int j = 0; j < 3; ++j)
+    for(int i = 0; i < 3; ++i) {
+      v.push_back(add_vertex(mesh));
+      put(vpm, v.back(), Point_3(i, j, 0));
+    }
+  for(int j = 0; j < 2; ++j)
+    for(int i = 0; i < 2; ++i) {
+      const int a = j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
+      const std::vector<vertex_descriptor> t1{v[a], v[b], v[c]}, t2{v[a], v[c], v[d]};
+      EXPECT_NE(CGAL::Euler::add_face(t1, mesh), boost::graph_traits<Mesh>::null_face());
+      EXPECT_NE(CGAL::Euler::add_face(t2, mesh), boost::graph_traits<Mesh>::null_face());
+    }
+  return v;
+}
+
+// A UV map with uv = (x, y) of the vertex, for any FaceGraph.
+template <class Mesh>
+std::unordered_map<typename boost::graph_traits<Mesh>::vertex_descriptor, Point_2>
+xy_uvs(const Mesh& mesh)
+{
+  std::unordered_map<typename boost::graph_traits<Mesh>::vertex_descriptor, Point_2> uv;
+  for(auto v : vertices(mesh)) {
+    const Point_3& p = get(CGAL::vertex_point, mesh, v);
+    uv[v] = Point_2(p.x(), p.y());
+  }
+  return uv;
+}
+
+// Checks that every corner's position and uv are consistent with uv = xy.
+void expect_uv_is_xy(const ICM::IO::Uv_mesh& m)
+{
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+    for(int k = 0; k < 3; ++k) {
+      const auto& p = m.positions.at(m.face_positions[f][k]);
+      const auto& t = m.uvs.at(m.face_uvs[f][k]);
+      EXPECT_EQ(p[0], t[0]);
+      EXPECT_EQ(p[1], t[1]);
+      EXPECT_EQ(p[2], 0.);
+    }
+}
+
+// Each face's corners, as a set of (x, y) integer positions, for order-independent comparison.
+std::multiset<std::vector<std::pair<int, int> > > face_corner_sets(const ICM::IO::Uv_mesh& m)
+{
+  std::multiset<std::vector<std::pair<int, int> > > out;
+  for(const auto& f : m.face_positions) {
+    std::vector<std::pair<int, int> > c;
+    for(int k = 0; k < 3; ++k)
+      c.emplace_back(static_cast<int>(m.positions[f[k]][0]),
+                     static_cast<int>(m.positions[f[k]][1]));
+    // Rotate so the smallest corner comes first: keeps the orientation, drops the start.
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    out.insert(c);
+  }
+  return out;
+}
+
+// The expected faces of build_grid(), in the same normal form as face_corner_sets().
+std::multiset<std::vector<std::pair<int, int> > > grid_corner_sets()
+{
+  std::multiset<std::vector<std::pair<int, int> > > out;
+  for(int j = 0; j < 2; ++j)
+    for(int i = 0; i < 2; ++i) {
+      out.insert({{i, j}, {i + 1, j}, {i + 1, j + 1}});
+      out.insert({{i, j}, {i + 1, j + 1}, {i, j + 1}});
+    }
+  return out;
+}
+
+// Seam mesh over the grid, as in CGAL's Surface_mesh_parameterization examples.
+using SM_vertex_descriptor = boost::graph_traits<Surface_mesh>::vertex_descriptor;
+using SM_edge_descriptor = boost::graph_traits<Surface_mesh>::edge_descriptor;
+using SM_halfedge_descriptor = boost::graph_traits<Surface_mesh>::halfedge_descriptor;
+using Seam_edge_pmap = Surface_mesh::Property_map<SM_edge_descriptor, bool>;
+using Seam_vertex_pmap = Surface_mesh::Property_map<SM_vertex_descriptor, bool>;
+using Seam_mesh = CGAL::Seam_mesh<Surface_mesh, Seam_edge_pmap, Seam_vertex_pmap>;
+using Seam_vertex_descriptor = boost::graph_traits<Seam_mesh>::vertex_descriptor;
+
+// The grid as a seam mesh cut along the given edges (pairs of grid vertex numbers), set up as
+// in CGAL's Surface_mesh_parameterization examples. Not copyable: the seam mesh refers to sm.
+struct Cut_grid
+{
+  explicit Cut_grid(std::initializer_list<std::pair<int, int> > seams)
+    : v(build_grid(sm)),
+      seam_edges(sm.add_property_map<SM_edge_descriptor, bool>("e:on_seam", false).first),
+      seam_vertices(sm.add_property_map<SM_vertex_descriptor, bool>("v:on_seam", false).first),
+      mesh(sm, seam_edges, seam_vertices)
+  {
+    for(const auto& e : seams)
+      EXPECT_TRUE(mesh.add_seam(v[e.first], v[e.second]));
+  }
+  Cut_grid(const Cut_grid&) = delete;
+  Cut_grid& operator=(const Cut_grid&) = delete;
+
+  Surface_mesh sm;
+  std::vector<SM_vertex_descriptor> v;
+  Seam_edge_pmap seam_edges;
+  Seam_vertex_pmap seam_vertices;
+  Seam_mesh mesh;
+};
+
+// UVs that pull the two sides of the vertical line x = 1 apart by 0.2, so that a seam
+// vertex's copies have different UVs: a seam mesh vertex is on the left side when the faces
+// around it are.
+std::map<Seam_vertex_descriptor, Point_2> split_uvs(const Seam_mesh& mesh, const Surface_mesh& sm)
+{
+  std::map<Seam_vertex_descriptor, Point_2> uv;
+  for(Seam_vertex_descriptor v : vertices(mesh)) {
+    const Point_3& p = sm.point(target(SM_halfedge_descriptor(halfedge(v, mesh)), sm));
+    double cx = 0.;
+    int n = 0;
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, mesh), mesh)) {
+      if(is_border(h, mesh))
+        continue;
+      for(auto g : CGAL::halfedges_around_face(h, mesh)) {
+        cx += sm.point(target(SM_halfedge_descriptor(g), sm)).x();
+        ++n;
+      }
+    }
+    const double shift = (cx / n < 1.) ? -0.1 : 0.1;
+    uv[v] = Point_2(p.x() + shift, p.y());
+  }
+  return uv;
+}
+
+// How many different UV indices the faces use for each position.
+std::vector<std::size_t> uvs_per_position(const ICM::IO::Uv_mesh& m)
+{
+  std::vector<std::set<int> > s(m.positions.size());
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+    for(int k = 0; k < 3; ++k)
+      s.at(m.face_positions[f][k]).insert(m.face_uvs[f][k]);
+  std::vector<std::size_t> n;
+  for(const auto& x : s)
+    n.push_back(x.size());
+  return n;
+}
+
+// A Uv_mesh whose faces are n separate unit right triangles, each with its own 3 positions
+// and 3 UVs, uv = xy: lets a test change the UV area of one face alone.
+ICM::IO::Uv_mesh separate_triangles(int n)
+{
+  ICM::IO::Uv_mesh m;
+  for(int f = 0; f < n; ++f) {
+    const double x = 2. * f;
+    const int b = static_cast<int>(m.positions.size());
+    m.positions.push_back({{x, 0., 0.}});
+    m.positions.push_back({{x + 1., 0., 0.}});
+    m.positions.push_back({{x, 1., 0.}});
+    for(int k = 0; k < 3; ++k)
+      m.uvs.push_back({{m.positions[b + k][0], m.positions[b + k][1]}});
+    m.face_positions.push_back({{b, b + 1, b + 2}});
+    m.face_uvs.push_back({{b, b + 1, b + 2}});
+  }
+  return m;
+}
+
+ICM::IO::Uv_mesh grid_uv_mesh()
+{
+  Surface_mesh sm;
+  build_grid(sm);
+  auto uv = xy_uvs(sm);
+  return ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(uv));
+}
+
+// ------------------------------------------------------------------------------------------
+// make_uv_mesh
+
+TEST(IoUvMesh, SurfaceMeshFollowsVertexOrder)
+{
+  Surface_mesh sm;
+  build_grid(sm);
+  auto uv = xy_uvs(sm);
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(uv));
+
+  ASSERT_EQ(m.positions.size(), 9u);
+  ASSERT_EQ(m.uvs.size(), 9u);
+  ASSERT_EQ(m.number_of_faces(), 8u);
+  ASSERT_EQ(m.face_uvs.size(), 8u);
+  std::string error;
+  EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
+  // Vertices were created in grid order, so position i is vertex i.
+  for(int i = 0; i < 9; ++i) {
+    EXPECT_EQ(m.positions[i][0], i % 3);
+    EXPECT_EQ(m.positions[i][1], i / 3);
+  }
+  // One UV per vertex: both index arrays agree.
+  EXPECT_EQ(m.face_positions, m.face_uvs);
+  EXPECT_EQ(face_corner_sets(m), grid_corner_sets());
+  expect_uv_is_xy(m);
+}
+
+TEST(IoUvMesh, SurfaceMeshWithRemovedVertexDoesNotUseRawIndices)
+{
+  Surface_mesh sm;
+  // An isolated vertex created first and removed without collecting garbage: the grid's
+  // vertices keep indices 1..9 while num_vertices() is 9.
+  const SM_vertex_descriptor lonely = sm.add_vertex(Point_3(5, 5, 5));
+  build_grid(sm);
+  sm.remove_vertex(lonely);
+  ASSERT_TRUE(sm.has_garbage());
+  auto uv = xy_uvs(sm);
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(uv));
+  ASSERT_EQ(m.positions.size(), 9u);
+  std::string error;
+  EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
+  EXPECT_EQ(face_corner_sets(m), grid_corner_sets());
+  expect_uv_is_xy(m);
+}
+
+TEST(IoUvMesh, Polyhedron)
+{
+  Polyhedron p;
+  build_grid(p);
+  auto uv = xy_uvs(p);
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(p, boost::make_assoc_property_map(uv));
+
+  ASSERT_EQ(m.positions.size(), 9u);
+  ASSERT_EQ(m.uvs.size(), 9u);
+  ASSERT_EQ(m.number_of_faces(), 8u);
+  std::string error;
+  EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
+  EXPECT_EQ(m.face_positions, m.face_uvs);
+  EXPECT_EQ(face_corner_sets(m), grid_corner_sets());
+  expect_uv_is_xy(m);
+  // Every position is used.
+  std::set<int> used;
+  for(const auto& f : m.face_positions)
+    used.insert(f.begin(), f.end());
+  EXPECT_EQ(used.size(), 9u);
+}
+
+TEST(IoUvMesh, SeamMeshSplitsSeamVertices)
+{
+  // Cut along x = 1 from the bottom border to the top border: the mesh falls in two halves.
+  Cut_grid grid({{1, 4}, {4, 7}});
+  const Seam_mesh& mesh = grid.mesh;
+  Surface_mesh& sm = grid.sm;
+  ASSERT_EQ(num_vertices(mesh), 12u);
+
+  const auto uv = split_uvs(mesh, sm);
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(mesh, boost::make_assoc_property_map(uv));
+
+  ASSERT_EQ(m.positions.size(), 9u);  // one per real vertex
+  ASSERT_EQ(m.uvs.size(), 12u);       // one per seam mesh vertex
+  ASSERT_EQ(m.number_of_faces(), 8u);
+  std::string error;
+  EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
+
+  // Positions and their face indices are those of the underlying mesh.
+  auto xy = xy_uvs(sm);
+  const ICM::IO::Uv_mesh plain = ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(xy));
+  EXPECT_EQ(m.positions, plain.positions);
+  EXPECT_EQ(m.face_positions, plain.face_positions);
+
+  // The vertices on the cut (x = 1) have two UVs, the others one.
+  const std::vector<std::size_t> n = uvs_per_position(m);
+  for(int i = 0; i < 9; ++i)
+    EXPECT_EQ(n[i], (i % 3 == 1) ? 2u : 1u) << "vertex " << i;
+
+  // Every corner uses the copy on its face's side of the cut.
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f) {
+    double cx = 0.;
+    for(int k = 0; k < 3; ++k)
+      cx += m.positions[m.face_positions[f][k]][0] / 3.;
+    const double shift = cx < 1. ? -0.1 : 0.1;
+    for(int k = 0; k < 3; ++k) {
+      const auto& p = m.positions[m.face_positions[f][k]];
+      const auto& t = m.uvs[m.face_uvs[f][k]];
+      EXPECT_DOUBLE_EQ(t[0], p[0] + shift) << "face " << f << " corner " << k;
+      EXPECT_DOUBLE_EQ(t[1], p[1]);
+    }
+  }
+
+  // A UV map keyed by the underlying halfedges, as CGAL's parameterization examples use,
+  // gives the same result.
+  auto uv_pm = sm.add_property_map<SM_halfedge_descriptor, Point_2>("h:uv").first;
+  for(const auto& e : uv)
+    put(uv_pm, e.first, e.second);
+  const ICM::IO::Uv_mesh m2 = ICM::IO::make_uv_mesh(mesh, uv_pm);
+  EXPECT_EQ(m2.uvs, m.uvs);
+  EXPECT_EQ(m2.face_uvs, m.face_uvs);
+  EXPECT_EQ(m2.face_positions, m.face_positions);
+}
+
+TEST(IoUvMesh, SeamMeshSlitTipHasOneUv)
+{
+  // A slit from the border to the centre: the border end splits, the inner tip does not.
+  Cut_grid grid({{1, 4}});
+  const Seam_mesh& mesh = grid.mesh;
+  std::map<Seam_vertex_descriptor, Point_2> uv;
+  for(Seam_vertex_descriptor sv : vertices(mesh))
+    uv[sv] = Point_2(0, 0);
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(mesh, boost::make_assoc_property_map(uv));
+  EXPECT_EQ(m.positions.size(), 9u);
+  EXPECT_EQ(m.uvs.size(), 10u);
+  const std::vector<std::size_t> n = uvs_per_position(m);
+  for(int i = 0; i < 9; ++i)
+    EXPECT_EQ(n[i], i == 1 ? 2u : 1u) << "vertex " << i;
+}
+
+// ------------------------------------------------------------------------------------------
+// write_uv_obj
+
+struct Parsed_obj
+{
+  std::vector<std::array<double, 3> > v;
+  std::vector<std::array<double, 2> > vt;
+  std::vector<std::array<int, 3> > fv, ft;
+};
+
+// A small parser for what write_uv_obj emits (CGAL's OBJ reader drops `vt`).
+Parsed_obj parse_obj(const std::string& path)
+{
+  Parsed_obj obj;
+  std::ifstream in(path);
+  in.imbue(std::locale::classic());
+  std::string line;
+  while(std::getline(in, line)) {
+    std::istringstream s(line);
+    s.imbue(std::locale::classic());
+    std::string tag;
+    s >> tag;
+    if(tag == "v") {
+      std::array<double, 3> p;
+      s >> p[0] >> p[1] >> p[2];
+      EXPECT_TRUE(static_cast<bool>(s)) << line;
+      obj.v.push_back(p);
+    } else if(tag == "vt") {
+      std::array<double, 2> t;
+      s >> t[0] >> t[1];
+      EXPECT_TRUE(static_cast<bool>(s)) << line;
+      obj.vt.push_back(t);
+    } else if(tag == "f") {
+      std::array<int, 3> a, b;
+      for(int k = 0; k < 3; ++k) {
+        char slash = 0;
+        s >> a[k] >> slash >> b[k];
+        EXPECT_EQ(slash, '/') << line;
+        --a[k];  // back to 0-based
+        --b[k];
+      }
+      EXPECT_TRUE(static_cast<bool>(s)) << line;
+      std::string rest;
+      EXPECT_FALSE(s >> rest) << "more than 3 corners: " << line;
+      obj.fv.push_back(a);
+      obj.ft.push_back(b);
+    } else {
+      EXPECT_TRUE(tag.empty() || tag[0] == '#') << "unexpected line: " << line;
+    }
+  }
+  return obj;
+}
+
+void expect_close(double expected, double actual)
+{
+  EXPECT_LE(std::abs(expected - actual), 1e-15 * std::abs(expected))
+      << expected << " vs " << actual;
+}
+
+TEST(IoObj, RoundTripKeepsEveryDigitAndSeams)
+{
+  Cut_grid grid({{1, 4}, {4, 7}});
+  auto uv = split_uvs(grid.mesh, grid.sm);
+  ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(grid.mesh, boost::make_assoc_property_map(uv));
+
+  // Numbers that a short format would round.
+  const double awkward[] = {0.1,       1. / 3.,      -2.5e17, 1e-300, 3.141592653589793,
+                            -7.0000000000000009, 6.02214076e23, 4.9406564584124654e-314};
+  int k = 0;
+  for(auto& p : m.positions)
+    for(double& x : p) {
+      x = awkward[k % 8] * (1 + k);
+      ++k;
+    }
+  for(auto& t : m.uvs)
+    for(double& x : t) {
+      x = -awkward[k % 8] / (1 + k);
+      ++k;
+    }
+
+  Temp_dir dir;
+  const std::string path = dir.file("grid.obj");
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_obj(path, m, error)) << error;
+  EXPECT_TRUE(error.empty());
+  EXPECT_EQ(dir.number_of_entries(), 1u);  // no temporary file left
+
+  const Parsed_obj obj = parse_obj(path);
+  ASSERT_EQ(obj.v.size(), m.positions.size());
+  ASSERT_EQ(obj.vt.size(), m.uvs.size());
+  ASSERT_EQ(obj.fv.size(), m.number_of_faces());
+  for(std::size_t i = 0; i < obj.v.size(); ++i)
+    for(int c = 0; c < 3; ++c)
+      expect_close(m.positions[i][c], obj.v[i][c]);
+  for(std::size_t i = 0; i < obj.vt.size(); ++i)
+    for(int c = 0; c < 2; ++c)
+      expect_close(m.uvs[i][c], obj.vt[i][c]);
+  EXPECT_EQ(obj.fv, m.face_positions);
+  EXPECT_EQ(obj.ft, m.face_uvs);
+}
+
+TEST(IoObj, StreamOverloadText)
+{
+  // The exact text for a tiny mesh: shortest form for short numbers, 1-based indices.
+  ICM::IO::Uv_mesh m = separate_triangles(1);
+  m.uvs[1] = {{0.5, 0.25}};
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  ASSERT_TRUE(ICM::IO::write_uv_obj(s, m));
+  const std::string text = s.str();
+  EXPECT_NE(text.find("\nv 1 0 0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nvt 0.5 0.25\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nf 1/1 2/2 3/3\n"), std::string::npos) << text;
+  EXPECT_EQ(s.precision(), 6);  // the stream's precision is restored
+}
+
+TEST(IoObj, MissingDirectoryFailsAndCreatesNothing)
+{
+  Temp_dir dir;
+  const fs::path missing = dir.path() / "no_such_dir";
+  const std::string path = (missing / "out.obj").string();
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_obj(path, grid_uv_mesh(), error));
+  EXPECT_NE(error.find("cannot write '" + path + "'"), std::string::npos) << error;
+  EXPECT_NE(error.find("No such file or directory"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+  EXPECT_FALSE(fs::exists(missing));
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+}
+
+TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
+{
+  Temp_dir dir;
+  const std::string path = dir.file("keep.obj");
+  write_text(path, "original\n");
+
+  ICM::IO::Uv_mesh bad = grid_uv_mesh();
+  bad.face_uvs[3][1] = 99;
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_obj(path, bad, error));
+  EXPECT_NE(error.find("out of range"), std::string::npos) << error;
+
+  ICM::IO::Uv_mesh nan_uv = grid_uv_mesh();
+  nan_uv.uvs[2][0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(ICM::IO::write_uv_obj(path, nan_uv, error));
+  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+
+  EXPECT_EQ(read_text(path), "original\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+// ------------------------------------------------------------------------------------------
+// write_file_atomically
+
+TEST(IoAtomicFile, FailingBodyKeepsOriginalAndLeavesNoTemporary)
+{
+  Temp_dir dir;
+  const std::string path = dir.file("data.txt");
+  write_text(path, "precious content\n");
+
+  std::string error;
+  EXPECT_FALSE(ICM::internal::write_file_atomically(
+      path,
+      [](std::ostream& os) {
+        os << "half written garbage";
+        return false;
+      },
+      error));
+  EXPECT_NE(error.find("cannot write '" + path + "'"), std::string::npos) << error;
+  EXPECT_EQ(read_text(path), "precious content\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+
+  error.clear();
+  EXPECT_FALSE(ICM::internal::write_file_atomically(
+      path,
+      [](std::ostream& os) -> bool {
+        os << "garbage";
+        throw std::runtime_error("boom");
+      },
+      error));
+  EXPECT_NE(error.find("boom"), std::string::npos) << error;
+  EXPECT_EQ(read_text(path), "precious content\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+
+  // A body that breaks its stream but claims success is caught by the stream check.
+  error.clear();
+  EXPECT_FALSE(ICM::internal::write_file_atomically(
+      path,
+      [](std::ostream& os) {
+        os << "garbage";
+        os.setstate(std::ios::badbit);
+        return true;
+      },
+      error));
+  EXPECT_FALSE(error.empty());
+  EXPECT_EQ(read_text(path), "precious content\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+TEST(IoAtomicFile, SuccessReplacesTheFile)
+{
+  Temp_dir dir;
+  const std::string path = dir.file("data.txt");
+  write_text(path, "old\n");
+  std::string error = "stale";
+  EXPECT_TRUE(ICM::internal::write_file_atomically(
+      path,
+      [](std::ostream& os) {
+        os << "new " << 1.5 << '\n';
+        return true;
+      },
+      error));
+  EXPECT_TRUE(error.empty());
+  EXPECT_EQ(read_text(path), "new 1.5\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+TEST(IoAtomicFile, TargetIsADirectory)
+{
+  Temp_dir dir;
+  fs::create_directory(dir.path() / "sub");
+  std::string error;
+  EXPECT_FALSE(ICM::internal::write_file_atomically(
+      dir.file("sub"), [](std::ostream& os) { return static_cast<bool>(os << "x"); }, error));
+  EXPECT_FALSE(error.empty());
+  EXPECT_TRUE(fs::is_directory(dir.path() / "sub"));
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+// ------------------------------------------------------------------------------------------
+// log_area_ratios
+
+TEST(IoLogAreaRatios, SimilarityGivesZero)
+{
+  Surface_mesh sm;
+  build_grid(sm);
+  // Distort the 3D positions so faces have different areas, and tilt them out of z = 0.
+  auto vpm = get(CGAL::vertex_point, sm);
+  for(auto v : vertices(sm)) {
+    const Point_3 p = get(vpm, v);
+    put(vpm, v, Point_3(p.x() + 0.3 * p.y() * p.y(), p.y() + 0.1 * p.x(), 0.));
+  }
+  // UV = the distorted plane points scaled, rotated, translated and mirrored; 3D = the same
+  // points tilted out of z = 0 by a rotation about the x axis (an isometry).
+  const double c = std::cos(0.7), s = std::sin(0.7), scale = 123.456;
+  std::unordered_map<SM_vertex_descriptor, Point_2> uv;
+  for(auto v : vertices(sm)) {
+    const Point_3 p = get(vpm, v);
+    uv[v] = Point_2(scale * (c * p.x() - s * p.y()) + 1e3, -scale * (s * p.x() + c * p.y()) - 7.);
+    put(vpm, v, Point_3(p.x(), c * p.y(), s * p.y()));
+  }
+  const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(uv));
+  const std::vector<double> r = ICM::IO::log_area_ratios(m);
+  ASSERT_EQ(r.size(), 8u);
+  for(double x : r)
+    EXPECT_NEAR(x, 0., 1e-12);
+}
+
+TEST(IoLogAreaRatios, OneFaceDoubled)
+{
+  const int n = 5;
+  ICM::IO::Uv_mesh m = separate_triangles(n);
+  // Scale face 0's UVs by sqrt(2) about its first corner: its UV area doubles.
+  for(int k = 1; k < 3; ++k) {
+    auto& t = m.uvs[k];
+    const auto& o = m.uvs[0];
+    t = {{o[0] + std::sqrt(2.) * (t[0] - o[0]), o[1] + std::sqrt(2.) * (t[1] - o[1])}};
+  }
+  // Total UV area (n + 1) a is normalised to n a: face 0 has 2n/(n+1), the others n/(n+1).
+  const std::vector<double> r = ICM::IO::log_area_ratios(m);
+  ASSERT_EQ(r.size(), static_cast<std::size_t>(n));
+  EXPECT_NEAR(r[0], std::log(2. * n / (n + 1.)), 1e-12);
+  for(int f = 1; f < n; ++f)
+    EXPECT_NEAR(r[f], std::log(n / (n + 1.)), 1e-12);
+  // Scale invariance: the same layout 1000 times larger gives the same ratios.
+  for(auto& t : m.uvs)
+    t = {{1e3 * t[0], 1e3 * t[1]}};
+  const std::vector<double> r2 = ICM::IO::log_area_ratios(m);
+  for(int f = 0; f < n; ++f)
+    EXPECT_NEAR(r2[f], r[f], 1e-12);
+}
+
+TEST(IoLogAreaRatios, DegenerateFacesAreClamped)
+{
+  ICM::IO::Uv_mesh m = separate_triangles(3);
+  m.uvs[2] = m.uvs[1];                    // face 0: zero UV area
+  m.positions[5] = m.positions[4];        // face 1: zero 3D area
+  const std::vector<double> r = ICM::IO::log_area_ratios(m);
+  EXPECT_EQ(r[0], -ICM::IO::log_area_ratio_clamp);
+  EXPECT_EQ(r[1], ICM::IO::log_area_ratio_clamp);
+  EXPECT_TRUE(std::isfinite(r[2]));
+
+  // A layout with no area at all: every face is shrunk to nothing.
+  ICM::IO::Uv_mesh flat = separate_triangles(2);
+  for(auto& t : flat.uvs)
+    t = {{1., 2.}};
+  for(double x : ICM::IO::log_area_ratios(flat))
+    EXPECT_EQ(x, -ICM::IO::log_area_ratio_clamp);
+}
+
+// ------------------------------------------------------------------------------------------
+// write_uv_svg
+
+TEST(IoSvg, OnePolygonPerFaceAndEscapedTitle)
+{
+  Temp_dir dir;
+  const std::string path = dir.file("layout.svg");
+  const ICM::IO::Uv_mesh m = grid_uv_mesh();
+  ICM::IO::Svg_options opt;
+  opt.title = "ICM <grid> & co";
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_svg(path, m, error, opt)) << error;
+  const std::string svg = read_text(path);
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_EQ(count_occurrences(svg, "<polygon"), m.number_of_faces());
+  EXPECT_NE(svg.find("ICM &lt;grid&gt; &amp; co"), std::string::npos);
+  EXPECT_EQ(count_occurrences(svg, "<linearGradient"), 1u);  // the colour bar
+  EXPECT_NE(svg.find(">-2<"), std::string::npos);            // its range
+  EXPECT_NE(svg.find(">+2<"), std::string::npos);
+  // An area preserving layout is white everywhere, and nothing is flipped.
+  EXPECT_EQ(count_occurrences(svg, "fill=\"#ffffff\"/>"), m.number_of_faces());
+  EXPECT_EQ(svg.find("#00ff00"), std::string::npos);
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+TEST(IoSvg, CoordinatesFitTheSquareWithYUp)
+{
+  ICM::IO::Uv_mesh m = separate_triangles(1);  // uv (0,0), (1,0), (0,1)
+  Temp_dir dir;
+  const std::string path = dir.file("t.svg");
+  ICM::IO::Svg_options opt;
+  opt.size = 100.;
+  opt.margin = 10.;
+  opt.legend = false;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_svg(path, m, error, opt)) << error;
+  // UV (0,0) is the bottom left corner of the 80 px square, (0,1) its top left.
+  EXPECT_NE(read_text(path).find("points=\"10,90 90,90 10,10\""), std::string::npos)
+      << read_text(path);
+}
+
+TEST(IoSvg, FlippedFacesAreHighlighted)
+{
+  ICM::IO::Uv_mesh m = separate_triangles(4);
+  // Mirror face 2's UV triangle: it is now clockwise.
+  for(int k = 0; k < 3; ++k)
+    m.uvs[6 + k][1] = -m.uvs[6 + k][1];
+  Temp_dir dir;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_svg(dir.file("a.svg"), m, error)) << error;
+  std::string svg = read_text(dir.file("a.svg"));
+  EXPECT_EQ(count_occurrences(svg, "<polygon"), 4u);
+  EXPECT_EQ(count_occurrences(svg, "stroke=\"#00ff00\""), 2u);  // the face group + legend swatch
+  EXPECT_NE(svg.find("1 flipped face<"), std::string::npos);
+
+  // Mirroring the whole layout flips nothing: it is mirrored back before drawing.
+  ICM::IO::Uv_mesh mirrored = separate_triangles(4);
+  for(auto& t : mirrored.uvs)
+    t[0] = -t[0];
+  ASSERT_TRUE(ICM::IO::write_uv_svg(dir.file("b.svg"), mirrored, error)) << error;
+  svg = read_text(dir.file("b.svg"));
+  EXPECT_EQ(count_occurrences(svg, "<polygon"), 4u);
+  EXPECT_EQ(svg.find("#00ff00"), std::string::npos);
+}
+
+TEST(IoSvg, EdgesOmittedBeyondTheLimit)
+{
+  Temp_dir dir;
+  ICM::IO::Svg_options opt;
+  opt.max_faces_with_edges = 4;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_svg(dir.file("e.svg"), grid_uv_mesh(), error, opt)) << error;
+  const std::string svg = read_text(dir.file("e.svg"));
+  EXPECT_EQ(count_occurrences(svg, "<polygon"), 8u);
+  EXPECT_NE(svg.find("<g stroke=\"none\">"), std::string::npos);
+}
+
+TEST(IoSvg, PanelsSideBySideWithOneColourBar)
+{
+  ICM::IO::Uv_mesh doubled = separate_triangles(3);
+  for(auto& t : doubled.uvs)
+    t = {{2. * t[0], 2. * t[1]}};
+  doubled.uvs[1][0] += 1.;  // face 0 enlarged
+  const std::vector<std::pair<std::string, ICM::IO::Uv_mesh> > panels = {
+      {"ICM", grid_uv_mesh()}, {"LSCM", doubled}, {"ARAP", separate_triangles(2)}};
+  Temp_dir dir;
+  const std::string path = dir.file("cmp.svg");
+  ICM::IO::Svg_options opt;
+  opt.title = "three_peaks";
+  opt.log_ratio_range = 1.5;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_svg_panels(path, panels, error, opt)) << error;
+  const std::string svg = read_text(path);
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_EQ(count_occurrences(svg, "<polygon"), 8u + 3u + 2u);
+  for(const char* t : {">ICM<", ">LSCM<", ">ARAP<", ">three_peaks<", ">-1.5<", ">+1.5<"})
+    EXPECT_NE(svg.find(t), std::string::npos) << t;
+  EXPECT_EQ(count_occurrences(svg, "<linearGradient"), 1u);
+  EXPECT_NE(svg.find("viewBox=\"0 0 2400 "), std::string::npos);
+  // The enlarged face is reddish, the others bluish: not everything is white any more.
+  EXPECT_LT(count_occurrences(svg, "fill=\"#ffffff\"/>"), 13u);
+}
+
+TEST(IoSvg, FailuresLeaveNothing)
+{
+  Temp_dir dir;
+  std::string error;
+  const std::string missing = (dir.path() / "nope" / "x.svg").string();
+  EXPECT_FALSE(ICM::IO::write_uv_svg(missing, grid_uv_mesh(), error));
+  EXPECT_NE(error.find("cannot write '" + missing + "'"), std::string::npos) << error;
+
+  ICM::IO::Svg_options bad;
+  bad.log_ratio_range = 0.;
+  EXPECT_FALSE(ICM::IO::write_uv_svg(dir.file("x.svg"), grid_uv_mesh(), error, bad));
+  EXPECT_FALSE(error.empty());
+
+  ICM::IO::Uv_mesh invalid = grid_uv_mesh();
+  invalid.face_positions.pop_back();
+  EXPECT_FALSE(ICM::IO::write_uv_svg_panels(dir.file("x.svg"), {{"broken", invalid}}, error));
+  EXPECT_NE(error.find("'broken'"), std::string::npos) << error;
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+}
+
+} // namespace
