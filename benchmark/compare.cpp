@@ -951,7 +951,7 @@ int main(int argc, char** argv) {
               << "Runs: "
               << (opt.runs > 0 ? std::to_string(opt.runs) + " per method (median time)"
                                : std::string("3 per method if one takes < 2 s, else 1 (median time)"))
-              << "; time limit " << fmt_seconds(opt.time_limit) << " s per run"
+              << "; time limit " << opt.time_limit << " s per run"
               << (opt.subdivide > 0 ? "; Loop subdivision x" + std::to_string(opt.subdivide)
                                     : std::string())
               << "\n\n";

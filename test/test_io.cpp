@@ -517,7 +517,7 @@ TEST(IoObj, StreamOverloadText)
   EXPECT_NE(text.find("\nv 1 0 0\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nvt 0.5 0.25\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nf 1/1 2/2 3/3\n"), std::string::npos) << text;
-  EXPECT_EQ(s.precision(), 6);  // the stream's precision is restored
+  EXPECT_EQ(s.precision(), 6);  // the stream is left as it was
 }
 
 TEST(IoObj, MissingDirectoryFailsAndCreatesNothing)

@@ -153,7 +153,9 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   }
   const double avail = (std::max)(0., opt.size - 2. * opt.margin);
   const double extent = nf > 0 ? (std::max)(umax - umin, vmax - vmin) : 0.;
-  const double scale = extent > 0. ? avail / extent : 1.;
+  // A layout of (nearly) zero extent is drawn as a point rather than blown up to infinity.
+  const double fit = extent > 0. ? avail / extent : 1.;
+  const double scale = std::isfinite(fit) ? fit : 1.;
   // Centre the layout in its square.
   const double ox = nf > 0 ? x0 + opt.margin + 0.5 * (avail - (umax - umin) * scale) : 0.;
   const double oy = nf > 0 ? y0 + opt.margin + 0.5 * (avail - (vmax - vmin) * scale) : 0.;

@@ -1,0 +1,401 @@
+// The numeric core on flat arrays: mesh index, circle packing metric, curvature map and its
+// Jacobian, Newton (Algorithm 1), the free-boundary optimum in both forms, the layouts.
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Layout.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using ICM::internal::Mesh_index;
+
+Mesh_index index_file(const std::string& name)
+{
+  Mesh mesh;
+  const std::string path = std::string(ICM_TEST_DATA_DIR) + "/" + name;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
+  Mesh_index index;
+  std::vector<Mesh::Vertex_index> vertices;
+  const ICM::internal::Index_status status =
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
+  EXPECT_TRUE(status.ok()) << status.message;
+  return index;
+}
+
+/// A planar grid of equilateral triangles: every circle packing with tangent circles of
+/// radius l/2 reproduces it exactly.
+Mesh_index equilateral_grid(int n)
+{
+  Mesh_index index;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i)
+      index.points.push_back({i + 0.5 * j, j * std::sqrt(3.0) / 2, 0.0});
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i)
+    {
+      index.faces.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+      index.faces.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  EXPECT_TRUE(ICM::internal::build_connectivity(index).ok());
+  return index;
+}
+
+Eigen::VectorXd random_perturbation(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  Eigen::VectorXd u = u0;
+  for(int i = 0; i < u.size(); ++i)
+    u[i] += d(rng);
+  return u;
+}
+
+std::vector<char> interior_of(const Mesh_index& index)
+{
+  std::vector<char> interior(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    interior[v] = !index.is_boundary_vertex[v];
+  return interior;
+}
+
+} // namespace
+
+TEST(MeshIndex, TopologyOfRealMeshes)
+{
+  const Mesh_index disk = index_file("nefertiti.off");
+  EXPECT_EQ(disk.number_of_vertices(), 299);
+  EXPECT_EQ(disk.number_of_faces(), 562);
+  EXPECT_EQ(disk.number_of_boundary_loops(), 1);
+  EXPECT_EQ(disk.euler_characteristic(), 1);
+  EXPECT_TRUE(disk.is_disk());
+  // Every edge appears in the face_edges of its faces, border edges in one face only.
+  int border_edges = 0;
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+    border_edges += disk.edge_faces[e][1] < 0;
+  EXPECT_EQ(border_edges, static_cast<int>(disk.boundary_loops[0].size()));
+
+  const Mesh_index sphere = index_file("sphere966.off");
+  EXPECT_EQ(sphere.number_of_boundary_loops(), 0);
+  EXPECT_EQ(sphere.euler_characteristic(), 2);
+  EXPECT_EQ(sphere.genus(), 0);
+  EXPECT_FALSE(sphere.is_disk());
+}
+
+TEST(MeshIndex, NonManifoldVertexIsRefused)
+{
+  Mesh_index bowtie;
+  bowtie.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  bowtie.faces = {{0, 1, 2}, {0, 3, 4}}; // two triangles sharing only vertex 0
+  const ICM::internal::Index_status status = ICM::internal::build_connectivity(bowtie);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message.find("non-manifold vertex"), std::string::npos) << status.message;
+}
+
+TEST(CirclePackingMetric, EquilateralGridIsReproducedExactly)
+{
+  const Mesh_index grid = equilateral_grid(6);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(grid);
+  EXPECT_EQ(metric.clamped_edges, 0);
+  ICM::Curvature_map<> curvature(grid, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
+  for(int e = 0; e < grid.number_of_edges(); ++e)
+  {
+    EXPECT_NEAR(metric.cos_phi[e], 1.0, 1e-12); // tangent circles
+    EXPECT_NEAR(lengths[e], 1.0, 1e-12);
+  }
+}
+
+TEST(CirclePackingMetric, AnglesStayInTheRangeThatKeepsTrianglesValid)
+{
+  const Mesh_index index = index_file("three_peaks.off");
+  for(ICM::Initial_radius rule : {ICM::Initial_radius::Mean_corner, ICM::Initial_radius::Max_corner})
+  {
+    const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index, rule);
+    for(double c : metric.cos_phi)
+    {
+      EXPECT_GE(c, 0.0);
+      EXPECT_LE(c, 1.0);
+    }
+    // Thurston: with phi in [0, pi/2] any radii give triangles; try wild ones.
+    ICM::Curvature_map<> curvature(index, metric);
+    Eigen::VectorXd k;
+    curvature.evaluate(random_perturbation(metric.u0, 3.0, 7), k);
+    EXPECT_TRUE(k.allFinite());
+  }
+}
+
+TEST(CurvatureMap, GaussBonnetHoldsForAnyMetric)
+{
+  for(const char* name : {"nefertiti.off", "sphere966.off", "mushroom.off"})
+  {
+    const Mesh_index index = index_file(name);
+    const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+    ICM::Curvature_map<> curvature(index, metric);
+    Eigen::VectorXd k;
+    for(unsigned seed : {1u, 2u, 3u})
+    {
+      curvature.evaluate(random_perturbation(metric.u0, 1.0, seed), k);
+      EXPECT_NEAR(ICM::gauss_bonnet_defect(index, k), 0.0, 1e-9) << name;
+    }
+  }
+}
+
+TEST(CurvatureMap, LaplacianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  const Eigen::VectorXd u = random_perturbation(metric.u0, 0.3, 11);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(u, k, &w);
+  for(double weight : w)
+    EXPECT_GT(weight, -1e-12); // Thurston: phi <= pi/2 keeps the power centre inside
+
+  // The full Delta (nothing pinned) as a dense matrix.
+  const int n = index.number_of_vertices();
+  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int i = index.edges[e][0], j = index.edges[e][1];
+    delta(i, j) -= w[e];
+    delta(j, i) -= w[e];
+    delta(i, i) += w[e];
+    delta(j, j) += w[e];
+  }
+  EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-12);
+
+  // dk = Delta du: central differences of K, column by column on a sample of vertices.
+  const double h = 1e-6;
+  double worst = 0;
+  for(int j = 0; j < n; j += 7)
+  {
+    Eigen::VectorXd up = u, down = u, kp, km;
+    up[j] += h;
+    down[j] -= h;
+    curvature.evaluate(up, kp);
+    curvature.evaluate(down, km);
+    const Eigen::VectorXd column = (kp - km) / (2 * h);
+    worst = std::max(worst, (column - delta.col(j)).cwiseAbs().maxCoeff() /
+                              delta.col(j).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-6);
+}
+
+TEST(DynamicLaplacian, RestrictedMatrixMatchesTheWeights)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(metric.u0, k, &w);
+  ICM::Dynamic_laplacian<ICM::Simplicial_solver> laplacian(index, interior_of(index));
+  laplacian.assemble(w);
+  ASSERT_TRUE(laplacian.factorize()); // positive definite: the border is fixed
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(laplacian.matrix()).selfadjointView<Eigen::Lower>();
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int i = laplacian.free_index(index.edges[e][0]), j = laplacian.free_index(index.edges[e][1]);
+    if(i >= 0 && j >= 0)
+      EXPECT_DOUBLE_EQ(dense(i, j), -w[e]);
+  }
+  // Interior rows see their border neighbours only on the diagonal: rows sum to >= 0.
+  EXPECT_GT(dense.rowwise().sum().minCoeff(), -1e-12);
+}
+
+TEST(InverseCurvatureMap, RecoversAMetricFromItsCurvature)
+{
+  // Algorithm 1 on a closed surface: K^{-1}(K(u*)) = u* up to the constant of the kernel.
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  const Eigen::VectorXd u_star = random_perturbation(metric.u0, 0.5, 5);
+  Eigen::VectorXd k_star;
+  curvature.evaluate(u_star, k_star);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(index, metric, k_star, u);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_LE(report.iterations, 10);
+  const Eigen::VectorXd difference = u - u_star;
+  EXPECT_LT((difference.array() - difference.mean()).abs().maxCoeff(), 1e-8);
+  EXPECT_NEAR((u - metric.u0).sum(), 0.0, 1e-8); // normalised as the paper's sum u = 0
+}
+
+TEST(InverseCurvatureMap, NewtonConvergesQuadratically)
+{
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  // Uniform curvature 4 pi / n: the "round" metric of Algorithm 3's first step.
+  const Eigen::VectorXd k_target =
+    Eigen::VectorXd::Constant(index.number_of_vertices(), 4 * M_PI / index.number_of_vertices());
+  Eigen::VectorXd u;
+  ICM::Newton_options options;
+  options.tolerance = 1e-13;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(index, metric, k_target, u, options);
+  ASSERT_TRUE(report.converged) << report.message;
+  const std::vector<double>& r = report.residual_history;
+  ASSERT_GE(r.size(), 3u);
+  // Once in the quadratic regime (full steps, r < 1e-2), r_{k+1} <= C r_k^2.
+  int quadratic_steps = 0;
+  for(std::size_t i = 0; i + 1 < r.size(); ++i)
+    if(r[i] < 1e-2 && r[i + 1] > 1e-12)
+    {
+      EXPECT_LT(r[i + 1], 50.0 * r[i] * r[i]) << "step " << i;
+      ++quadratic_steps;
+    }
+  EXPECT_GE(quadratic_steps, 1);
+}
+
+TEST(InverseCurvatureMap, RefusesCurvatureThatViolatesGaussBonnet)
+{
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(
+    index, metric, Eigen::VectorXd::Zero(index.number_of_vertices()), u);
+  EXPECT_FALSE(report.converged);
+  EXPECT_NE(report.message.find("Gauss-Bonnet"), std::string::npos) << report.message;
+}
+
+TEST(OptimalMetric, DiffusionAndNewtonReachTheSameOptimum)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  const std::vector<char> singular = ICM::boundary_singular_set(index);
+
+  Eigen::VectorXd u_newton;
+  const ICM::Newton_report newton = ICM::free_boundary_optimum(index, metric, singular, u_newton);
+  ASSERT_TRUE(newton.converged) << newton.message;
+  EXPECT_LE(newton.iterations, 10);
+
+  Eigen::VectorXd u_diffusion;
+  ICM::Diffusion_options options;
+  options.tolerance = 1e-10;
+  const ICM::Diffusion_report diffusion =
+    ICM::free_boundary_curvature_diffusion(index, metric, singular, u_diffusion, options);
+  ASSERT_TRUE(diffusion.converged) << diffusion.message;
+  EXPECT_GT(diffusion.iterations, newton.iterations); // the point of the Newton form
+
+  // Lemma 3.4 / Theorem 3.2: u - u0 is one constant on the singular set...
+  const Eigen::VectorXd shift = u_diffusion - metric.u0;
+  double lo = 1e300, hi = -1e300;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    if(singular[v])
+    {
+      lo = std::min(lo, shift[v]);
+      hi = std::max(hi, shift[v]);
+    }
+  EXPECT_LT(hi - lo, 1e-12);
+  // ...and the two metrics agree up to that global scale.
+  const Eigen::VectorXd difference = u_diffusion - u_newton;
+  EXPECT_LT((difference.array() - lo).abs().maxCoeff(), 1e-7);
+}
+
+#ifdef ICM_HAS_CHOLMOD
+TEST(OptimalMetric, CholmodAndSimplicialSolversAgree)
+{
+  const Mesh_index index = index_file("three_peaks.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  const std::vector<char> singular = ICM::boundary_singular_set(index);
+  Eigen::VectorXd u_simplicial, u_cholmod;
+  const ICM::Newton_report a =
+    ICM::free_boundary_optimum<ICM::Simplicial_solver>(index, metric, singular, u_simplicial);
+  const ICM::Newton_report b =
+    ICM::free_boundary_optimum<ICM::Cholmod_solver>(index, metric, singular, u_cholmod);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_TRUE(b.converged) << b.message;
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_LT((u_simplicial - u_cholmod).cwiseAbs().maxCoeff(), 1e-9);
+}
+#endif
+
+TEST(OptimalMetric, LowDegreeVerticesCanBeFlattened)
+{
+  // A fan whose centre has degree 3 inside a larger disk: with link angles clamped to pi/2
+  // its angle sum could never reach 2 pi; the metric relaxes that link.
+  Mesh_index index;
+  index.points = {{0, 0, 0}, {2, 0, 0}, {-1, 1.7, 0}, {-1, -1.7, 0}, {0.2, 0.1, 0},
+                  {3, 2, 0}, {-3, 0.5, 0}, {1, -3, 0}};
+  index.faces = {{4, 1, 2}, {4, 2, 3}, {4, 3, 1}, {1, 5, 2}, {2, 6, 3}, {3, 7, 1}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  std::vector<double> phi(index.number_of_edges(), M_PI / 2);
+  EXPECT_EQ(ICM::keep_low_degree_vertices_flattenable(index, phi), 1);
+  double link = 0;
+  for(int f = 0; f < 3; ++f)
+    link += phi[index.face_edges[f][0]];
+  EXPECT_NEAR(link, M_PI - 0.1 * M_PI, 1e-12);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+    metric.cos_phi[e] = std::cos(phi[e]);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  EXPECT_TRUE(report.converged) << report.message;
+}
+
+TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
+{
+  const Mesh_index index = index_file("three_peaks.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Inverse_curvature_map<> solver(index, metric, interior_of(index));
+  Eigen::VectorXd u;
+  ASSERT_TRUE(ICM::free_boundary_optimum(solver, metric, u).converged);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  solver.curvature_map().evaluate(u, k, &w);
+  const std::vector<double> lengths = solver.curvature_map().lengths();
+
+  const std::vector<ICM::Uv> propagated = ICM::layout_by_propagation(index, lengths);
+  const ICM::Layout_check a = ICM::check_layout(index, lengths, propagated);
+  EXPECT_EQ(a.flipped_faces, 0);
+  EXPECT_LT(a.max_relative_length_error, 1e-8);
+
+  std::vector<ICM::Uv> harmonic;
+  std::string message;
+  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, solver.laplacian(), harmonic, message))
+    << message;
+  const ICM::Layout_check b = ICM::check_layout(index, lengths, harmonic);
+  EXPECT_EQ(b.flipped_faces, 0);
+  EXPECT_LT(b.max_relative_length_error, 1e-8);
+}
+
+TEST(Layout, EquilateralGridLaysOutAsItself)
+{
+  // A planar mesh reproduced exactly by its packing is already flat: the optimum is u0
+  // and the layout is the input up to a rigid motion.
+  const Mesh_index grid = equilateral_grid(5);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(grid);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(grid, metric, ICM::boundary_singular_set(grid), u);
+  ASSERT_TRUE(report.converged);
+  EXPECT_EQ(report.iterations, 0);
+  ICM::Curvature_map<> curvature(grid, metric);
+  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(grid, curvature.compute_lengths(u));
+  for(int i = 0; i < grid.number_of_vertices(); ++i)
+    for(int j = i + 1; j < grid.number_of_vertices(); j += 5)
+    {
+      const auto& p = grid.points[i];
+      const auto& q = grid.points[j];
+      EXPECT_NEAR(std::hypot(uv[i][0] - uv[j][0], uv[i][1] - uv[j][1]),
+                  std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
+    }
+}
