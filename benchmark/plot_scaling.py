@@ -58,6 +58,7 @@ def plot(rows, path, title):
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
     except ImportError:
         print("plot_scaling: matplotlib is missing (apt-get install python3-matplotlib); "
               "no plot written", file=sys.stderr)
@@ -97,6 +98,10 @@ def plot(rows, path, title):
                 xmid = math.sqrt(x0 * x1)
                 ax.loglog([x0, x1], [ymid * x0 / xmid, ymid * x1 / xmid], ls="--",
                           color="lightgray", label="∝ faces")
+        for axis in (ax.xaxis, ax.yaxis):  # plain numbers at 1, 2, 5 x 10^k
+            axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            axis.set_minor_formatter(NullFormatter())
         ax.set_xlabel("faces")
         ax.set_ylabel(label)
         ax.grid(True, which="both", ls=":", lw=0.5)

@@ -1,0 +1,169 @@
+// Google Benchmark micro-benchmarks of the numeric kernels at several mesh sizes: the
+// curvature map, Laplacian assembly, numeric factorization, one Newton step, the layouts.
+// Meshes: the bundled disks, and three_peaks refined by Loop subdivision for larger sizes.
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Layout.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+/// three_peaks refined `levels` times (3.7k faces x 4^levels), indexed once and cached.
+struct Fixture
+{
+  ICM::internal::Mesh_index index;
+  ICM::Circle_packing_metric metric;
+  std::vector<char> interior;
+};
+
+const Fixture& fixture(int levels)
+{
+  static std::map<int, std::unique_ptr<Fixture>> cache;
+  auto& slot = cache[levels];
+  if(!slot)
+  {
+    Mesh mesh;
+    CGAL::IO::read_polygon_mesh(ICM_BENCHMARK_MESH, mesh);
+    if(levels > 0)
+      CGAL::Subdivision_method_3::Loop_subdivision(
+        mesh, CGAL::parameters::number_of_iterations(levels));
+    slot = std::make_unique<Fixture>();
+    std::vector<Mesh::Vertex_index> vertices;
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh),
+                              slot->index, vertices);
+    slot->metric = ICM::initial_circle_packing_metric(slot->index);
+    for(char b : slot->index.is_boundary_vertex)
+      slot->interior.push_back(!b);
+  }
+  return *slot;
+}
+
+void set_faces(benchmark::State& state, const Fixture& f)
+{
+  state.counters["faces"] = f.index.number_of_faces();
+}
+
+void BM_curvature_map(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  ICM::Curvature_map<> curvature(f.index, f.metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  for(auto _ : state)
+  {
+    curvature.evaluate(f.metric.u0, k, &w);
+    benchmark::DoNotOptimize(k.data());
+  }
+  set_faces(state, f);
+}
+
+void BM_laplacian_assembly(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  ICM::Curvature_map<> curvature(f.index, f.metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(f.metric.u0, k, &w);
+  ICM::Dynamic_laplacian<> laplacian(f.index, f.interior);
+  for(auto _ : state)
+  {
+    laplacian.assemble(w);
+    benchmark::ClobberMemory();
+  }
+  set_faces(state, f);
+}
+
+template <class Solver>
+void BM_numeric_factorization(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  ICM::Curvature_map<> curvature(f.index, f.metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(f.metric.u0, k, &w);
+  ICM::Dynamic_laplacian<Solver> laplacian(f.index, f.interior);
+  laplacian.assemble(w);
+  for(auto _ : state)
+    benchmark::DoNotOptimize(laplacian.factorize());
+  set_faces(state, f);
+}
+
+void BM_newton_step(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  ICM::Inverse_curvature_map<> solver(f.index, f.metric, f.interior);
+  ICM::Newton_options one_step;
+  one_step.max_iterations = 1;
+  const Eigen::VectorXd flat = Eigen::VectorXd::Zero(f.index.number_of_vertices());
+  for(auto _ : state)
+  {
+    Eigen::VectorXd u = f.metric.u0;
+    benchmark::DoNotOptimize(solver.solve(flat, u, one_step).iterations);
+  }
+  set_faces(state, f);
+}
+
+void BM_free_boundary_optimum(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  for(auto _ : state)
+  {
+    Eigen::VectorXd u;
+    benchmark::DoNotOptimize(
+      ICM::free_boundary_optimum(f.index, f.metric, ICM::boundary_singular_set(f.index), u).iterations);
+  }
+  set_faces(state, f);
+}
+
+void BM_layout(benchmark::State& state)
+{
+  const Fixture& f = fixture(static_cast<int>(state.range(0)));
+  const bool harmonic = state.range(1) != 0;
+  ICM::Inverse_curvature_map<> solver(f.index, f.metric, f.interior);
+  Eigen::VectorXd u, k;
+  std::vector<double> w;
+  ICM::free_boundary_optimum(solver, f.metric, u);
+  solver.curvature_map().evaluate(u, k, &w);
+  const std::vector<double> lengths = solver.curvature_map().lengths();
+  std::vector<ICM::Uv> uv;
+  std::string message;
+  for(auto _ : state)
+  {
+    if(harmonic)
+      ICM::layout_harmonic(f.index, lengths, k, w, solver.laplacian(), uv, message);
+    else
+      uv = ICM::layout_by_propagation(f.index, lengths);
+    benchmark::DoNotOptimize(uv.data());
+  }
+  set_faces(state, f);
+  state.SetLabel(harmonic ? "harmonic" : "propagation");
+}
+
+} // namespace
+
+BENCHMARK(BM_curvature_map)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_laplacian_assembly)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Simplicial_solver)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+#ifdef ICM_HAS_CHOLMOD
+BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Cholmod_solver)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+#endif
+BENCHMARK(BM_newton_step)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_free_boundary_optimum)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_layout)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
