@@ -1,0 +1,305 @@
+// Tests of the command-line tool icm_param, run as a separate process: outputs on success,
+// one-line diagnostics and no written (or clobbered) file on failure, exit codes.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef _WIN32
+#  include <sys/wait.h>
+#  include <unistd.h>
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
+
+std::string read_file(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+void write_file(const fs::path& path, const std::string& content)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  ASSERT_TRUE(out.good()) << path;
+}
+
+std::vector<std::string> lines_of(const std::string& text)
+{
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for(std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+std::string quote(const std::string& s)
+{
+  std::string out = "'";
+  for(char c : s)
+  {
+    if(c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+/// A fresh directory under GoogleTest's temporary directory: `work` for the tool's outputs,
+/// and the captured streams beside it, so that `work` holds exactly what the tool wrote.
+class Sandbox
+{
+public:
+  Sandbox()
+  {
+    static std::atomic<int> counter{0};
+    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::path(testing::TempDir()) /
+            ("icm_cli_" + std::to_string(static_cast<long>(::getpid())) + "_" +
+             std::string(info ? info->name() : "x") + "_" + std::to_string(counter++));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "work");
+  }
+  ~Sandbox()
+  {
+    std::error_code ec;
+    fs::remove_all(root_, ec);
+  }
+  fs::path work() const { return root_ / "work"; }
+  fs::path file(const std::string& name) const { return work() / name; }
+
+  /// Files in `work`, sorted.
+  std::vector<std::string> listing() const
+  {
+    std::vector<std::string> names;
+    for(const auto& entry : fs::directory_iterator(work()))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  struct Result
+  {
+    int exit_code = -1;
+    std::string out, err;
+  };
+
+  /// Runs icm_param with `arguments` (already quoted) in `work`.
+  Result run(const std::string& arguments) const
+  {
+    const fs::path out = root_ / "stdout.txt", err = root_ / "stderr.txt";
+    const std::string command = "cd " + quote(work().string()) + " && " + quote(ICM_PARAM_EXE) +
+                                " " + arguments + " >" + quote(out.string()) + " 2>" +
+                                quote(err.string());
+    const int status = std::system(command.c_str());
+    Result r;
+#ifdef _WIN32
+    r.exit_code = status;
+#else
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+#endif
+    r.out = read_file(out);
+    r.err = read_file(err);
+    return r;
+  }
+
+private:
+  fs::path root_;
+};
+
+/// Checks a failed run: non-zero exit, nothing on stdout, exactly one line on stderr that
+/// contains `expected` and names the tool, and no file left in the work directory but
+/// `allowed` (temporary files included).
+void expect_clean_failure(const Sandbox& box, const Sandbox::Result& r, const std::string& expected,
+                          const std::vector<std::string>& allowed = {})
+{
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.exit_code, 128 + 6) << "aborted";
+  EXPECT_NE(r.exit_code, 128 + 11) << "crashed";
+  EXPECT_TRUE(r.out.empty()) << "stdout: " << r.out;
+  const std::vector<std::string> lines = lines_of(r.err);
+  ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << r.err;
+  EXPECT_NE(lines[0].find(expected), std::string::npos) << "stderr: " << lines[0];
+  EXPECT_EQ(lines[0].rfind("icm_param: ", 0), 0u) << "stderr: " << lines[0];
+  EXPECT_FALSE(r.err.empty() || r.err.back() != '\n') << "the line is not terminated";
+  EXPECT_EQ(box.listing(), allowed);
+}
+
+/// The value of a numeric JSON key in a flat one-line object, or "" when absent.
+std::string json_value(const std::string& json, const std::string& key)
+{
+  const std::string needle = "\"" + key + "\":";
+  const std::size_t at = json.find(needle);
+  if(at == std::string::npos)
+    return "";
+  const std::size_t start = at + needle.size();
+  const std::size_t end = json.find_first_of(",}", start);
+  return json.substr(start, end - start);
+}
+
+TEST(Cli, NefertitiWritesObjSvgAndJson)
+{
+  Sandbox box;
+  const Sandbox::Result r =
+    box.run(quote(data_path("nefertiti.off")) + " -o out.obj --svg out.svg --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << "stderr: " << r.err;
+
+  const std::vector<std::string> out_lines = lines_of(r.out);
+  ASSERT_EQ(out_lines.size(), 1u) << r.out;
+  const std::string& json = out_lines[0];
+  EXPECT_EQ(json.front(), '{');
+  EXPECT_EQ(json.back(), '}');
+  EXPECT_EQ(json_value(json, "vertices"), "299");
+  EXPECT_EQ(json_value(json, "faces"), "562");
+  EXPECT_EQ(json_value(json, "boundary_loops"), "1");
+  EXPECT_EQ(json_value(json, "genus"), "0");
+  EXPECT_EQ(json_value(json, "flipped_faces"), "0");
+  EXPECT_EQ(json_value(json, "layout"), "\"propagation\"");
+  const std::string iterations = json_value(json, "newton_iterations");
+  ASSERT_FALSE(iterations.empty()) << json;
+  EXPECT_GE(std::stoi(iterations), 1);
+  EXPECT_LE(std::stoi(iterations), 10);
+  const std::string residual = json_value(json, "max_curvature_error");
+  ASSERT_FALSE(residual.empty()) << json;
+  EXPECT_LT(std::stod(residual), 1e-9);
+  for(const char* key : {"seconds_total", "seconds_read", "seconds_index", "seconds_metric",
+                         "seconds_optimum", "seconds_layout", "seconds_parameterize",
+                         "seconds_write"})
+  {
+    const std::string v = json_value(json, key);
+    ASSERT_FALSE(v.empty()) << key << " missing in " << json;
+    EXPECT_GE(std::stod(v), 0.0) << key;
+  }
+  EXPECT_GE(std::stod(json_value(json, "seconds_total")),
+            std::stod(json_value(json, "seconds_parameterize")));
+
+  EXPECT_EQ(box.listing(), (std::vector<std::string>{"out.obj", "out.svg"}));
+  const std::vector<std::string> obj = lines_of(read_file(box.file("out.obj")));
+  const std::regex face(R"(f (\d+)/(\d+) (\d+)/(\d+) (\d+)/(\d+))");
+  int v = 0, vt = 0, f = 0, bad_faces = 0, out_of_range = 0;
+  for(const std::string& line : obj)
+  {
+    if(line.rfind("v ", 0) == 0)
+      ++v;
+    else if(line.rfind("vt ", 0) == 0)
+      ++vt;
+    else if(line.rfind("f ", 0) == 0)
+    {
+      ++f;
+      std::smatch m;
+      if(!std::regex_match(line, m, face))
+        ++bad_faces;
+      else
+        for(int i = 1; i <= 6; ++i)
+          if(std::stoi(m[i]) < 1 || std::stoi(m[i]) > 299)
+            ++out_of_range;
+    }
+  }
+  EXPECT_EQ(v, 299);
+  EXPECT_EQ(vt, 299);
+  EXPECT_EQ(f, 562);
+  EXPECT_EQ(bad_faces, 0);
+  EXPECT_EQ(out_of_range, 0);
+
+  const std::string svg = read_file(box.file("out.svg"));
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+TEST(Cli, WithoutJsonPrintsOneSummaryLineOnStderr)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")) + " -o out.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(box.listing(), (std::vector<std::string>{"out.obj"}));
+}
+
+TEST(Cli, ClosedMeshIsNotADisk)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg");
+  expect_clean_failure(box, r, "not a disk");
+  EXPECT_NE(r.err.find("0 boundary loops"), std::string::npos) << r.err;
+}
+
+TEST(Cli, MissingInputFile)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(box.file("no_such_mesh.off").string()) + " -o out.obj");
+  expect_clean_failure(box, r, "no_such_mesh.off");
+}
+
+TEST(Cli, ExistingOutputIsKeptWhenTheRunFails)
+{
+  Sandbox box;
+  const std::string previous = "# the user's precious file\nv 1 2 3\n";
+  write_file(box.file("out.obj"), previous);
+  write_file(box.file("out.svg"), "<svg/>");
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg");
+  expect_clean_failure(box, r, "not a disk", {"out.obj", "out.svg"});
+  EXPECT_EQ(read_file(box.file("out.obj")), previous);
+  EXPECT_EQ(read_file(box.file("out.svg")), "<svg/>");
+}
+
+TEST(Cli, NanCoordinate)
+{
+  Sandbox box;
+  // A small valid disk (two triangles) with one coordinate NaN.
+  write_file(box.file("nan.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  const Sandbox::Result r = box.run("nan.off -o out.obj");
+  // Either the reader rejects the number or the tool's finiteness check does; both are one
+  // line naming the problem file or the coordinate.
+  const bool names_file = r.err.find("nan.off") != std::string::npos;
+  const bool names_coordinate = r.err.find("non-finite") != std::string::npos;
+  EXPECT_TRUE(names_file || names_coordinate) << r.err;
+  expect_clean_failure(box, r, "icm_param: ", {"nan.off"});
+  RecordProperty("message", r.err);
+}
+
+TEST(Cli, QuadFace)
+{
+  Sandbox box;
+  write_file(box.file("quad.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  const Sandbox::Result r = box.run("quad.off -o out.obj");
+  expect_clean_failure(box, r, "non-triangle", {"quad.off"});
+}
+
+TEST(Cli, UnknownOption)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")) + " -o out.obj --frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown option --frobnicate"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("usage:"), std::string::npos) << r.err;
+  EXPECT_TRUE(box.listing().empty());
+}
+
+TEST(Cli, MissingOutputOption)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no output file"), std::string::npos) << r.err;
+  EXPECT_TRUE(box.listing().empty());
+}
+
+} // namespace

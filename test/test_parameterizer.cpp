@@ -1,0 +1,851 @@
+// Tests of Inverse_curvature_map_parameterizer_3: the CGAL drop-in path on Surface_mesh,
+// Polyhedron_3 and Seam_mesh, analytic cases (planar disks, a spherical cap), the real disk
+// meshes of the shared data set, nearly closed surfaces, and every kind of bad input.
+
+#include <ICM/Distortion.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/Seam_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/io.h>
+
+#include <boost/property_map/property_map.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <queue>
+#include <random>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point_2 = Kernel::Point_2;
+using Point_3 = Kernel::Point_3;
+using Surface_mesh = CGAL::Surface_mesh<Point_3>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+using SM_vertex = Surface_mesh::Vertex_index;
+using SM_halfedge = Surface_mesh::Halfedge_index;
+using SM_face = Surface_mesh::Face_index;
+namespace SMP = CGAL::Surface_mesh_parameterization;
+namespace PMP = CGAL::Polygon_mesh_processing;
+namespace fs = std::filesystem;
+
+template <class Mesh>
+using Parameterizer = ICM::Inverse_curvature_map_parameterizer_3<Mesh>;
+
+const double nan_value = std::numeric_limits<double>::quiet_NaN();
+
+std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
+std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
+bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+
+template <class Mesh>
+void read_mesh(const std::string& path, Mesh& mesh)
+{
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << "cannot read " << path;
+  ASSERT_FALSE(faces(mesh).empty()) << path;
+}
+
+/// Number of border cycles and Euler characteristic of a (connected) mesh.
+template <class Mesh>
+std::pair<int, int> topology(const Mesh& mesh)
+{
+  std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> cycles;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
+  const int chi = static_cast<int>(num_vertices(mesh)) - static_cast<int>(num_edges(mesh)) +
+                  static_cast<int>(num_faces(mesh));
+  return {static_cast<int>(cycles.size()), chi};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mesh builders
+
+/// A disk of concentric rings: ring i (i = first_ring..rings) has 6 i points at radius
+/// radius(i, k) and angle angle(i, k); ring 0 is the centre. Consecutive rings are zipped by
+/// angle. Faces are counter-clockwise seen from +z (or from outside for the cap).
+/// first_ring = 1 leaves out the centre: an annulus (two boundary loops).
+template <class Position>
+Surface_mesh ring_disk(int rings, Position position, int first_ring = 0)
+{
+  Surface_mesh mesh;
+  std::vector<std::vector<SM_vertex>> ring(rings + 1);
+  std::vector<std::vector<double>> angle(rings + 1);
+  for(int i = first_ring; i <= rings; ++i)
+  {
+    const int n = i == 0 ? 1 : 6 * i;
+    for(int k = 0; k < n; ++k)
+    {
+      double a = 0;
+      ring[i].push_back(mesh.add_vertex(position(i, k, n, a)));
+      angle[i].push_back(a);
+    }
+  }
+  for(int i = first_ring; i < rings; ++i)
+  {
+    const std::vector<SM_vertex>&inner = ring[i], &outer = ring[i + 1];
+    const int n = static_cast<int>(inner.size()), m = static_cast<int>(outer.size());
+    if(n == 1)
+    {
+      for(int b = 0; b < m; ++b)
+        EXPECT_NE(mesh.add_face(inner[0], outer[b], outer[(b + 1) % m]), Surface_mesh::null_face());
+      continue;
+    }
+    auto next_angle = [](const std::vector<double>& a, int j) {
+      const int size = static_cast<int>(a.size());
+      return a[j % size] + (j >= size ? 2 * CGAL_PI : 0.0);
+    };
+    int a = 0, b = 0;
+    while(a < n || b < m)
+    {
+      const bool advance_outer = a == n || (b < m && next_angle(angle[i + 1], b + 1) <=
+                                                        next_angle(angle[i], a + 1));
+      if(advance_outer)
+      {
+        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], outer[(b + 1) % m]),
+                  Surface_mesh::null_face());
+        ++b;
+      }
+      else
+      {
+        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], inner[(a + 1) % n]),
+                  Surface_mesh::null_face());
+        ++a;
+      }
+    }
+  }
+  return mesh;
+}
+
+/// A planar disk of radius 1 at z = 0 with jittered interior points: irregular triangles.
+Surface_mesh jittered_planar_disk(int rings, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  return ring_disk(rings, [&](int i, int k, int n, double& a) {
+    a = 2 * CGAL_PI * k / n;
+    double r = static_cast<double>(i) / rings;
+    if(i > 0 && i < rings)
+    {
+      a += jitter(random) * 2 * CGAL_PI / n;
+      r += jitter(random) / rings;
+    }
+    return Point_3(r * std::cos(a), r * std::sin(a), 0);
+  });
+}
+
+/// Points on the unit sphere with polar angle below max_polar_angle, the rings evenly spaced
+/// in polar angle.
+Surface_mesh spherical_cap(int rings, double max_polar_angle)
+{
+  return ring_disk(rings, [&](int i, int k, int n, double& a) {
+    a = 2 * CGAL_PI * k / n;
+    const double theta = max_polar_angle * i / rings;
+    return Point_3(std::sin(theta) * std::cos(a), std::sin(theta) * std::sin(a), std::cos(theta));
+  });
+}
+
+/// The hexagon of the regular triangular lattice with `radius` edges per side: every edge has
+/// length 1, every triangle is equilateral.
+Surface_mesh equilateral_hexagon(int radius)
+{
+  Surface_mesh mesh;
+  std::map<std::pair<int, int>, SM_vertex> vertex;
+  for(int q = -radius; q <= radius; ++q)
+    for(int r = -radius; r <= radius; ++r)
+      if(std::abs(q + r) <= radius)
+        vertex[{q, r}] = mesh.add_vertex(Point_3(q + 0.5 * r, 0.5 * std::sqrt(3.0) * r, 0));
+  auto find = [&](int q, int r) {
+    auto it = vertex.find({q, r});
+    return it == vertex.end() ? Surface_mesh::null_vertex() : it->second;
+  };
+  for(int q = -radius; q <= radius; ++q)
+  {
+    for(int r = -radius; r <= radius; ++r)
+    {
+      const SM_vertex a = find(q, r), b = find(q + 1, r), c = find(q, r + 1), d = find(q + 1, r + 1);
+      if(a != Surface_mesh::null_vertex() && b != Surface_mesh::null_vertex() &&
+         c != Surface_mesh::null_vertex())
+      {
+        EXPECT_NE(mesh.add_face(a, b, c), Surface_mesh::null_face());
+      }
+      if(b != Surface_mesh::null_vertex() && d != Surface_mesh::null_vertex() &&
+         c != Surface_mesh::null_vertex())
+      {
+        EXPECT_NE(mesh.add_face(b, d, c), Surface_mesh::null_face());
+      }
+    }
+  }
+  return mesh;
+}
+
+/// Removes the faces around `v` (in rotational order, so the hole grows as one disk).
+void punch_hole(Surface_mesh& mesh, SM_vertex v)
+{
+  std::vector<SM_face> around;
+  for(SM_face f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+    if(f != Surface_mesh::null_face())
+      around.push_back(f);
+  for(SM_face f : around)
+    CGAL::Euler::remove_face(mesh.halfedge(f), mesh);
+  mesh.collect_garbage();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Running and checking
+
+/// UV property of a Surface_mesh, every value NaN before the run.
+Surface_mesh::Property_map<SM_vertex, Point_2> nan_uv_map(Surface_mesh& mesh)
+{
+  auto uv = mesh.add_property_map<SM_vertex, Point_2>("v:test_uv", Point_2(nan_value, nan_value)).first;
+  for(SM_vertex v : vertices(mesh))
+    put(uv, v, Point_2(nan_value, nan_value));
+  return uv;
+}
+
+struct Outcome
+{
+  SMP::Error_code status = SMP::ERROR_EMPTY_MESH;
+  ICM::Parameterization_report report;
+};
+
+/// The drop-in path: CGAL's parameterize() with the longest border.
+template <class Mesh, class UvMap>
+Outcome run_cgal(Mesh& mesh, UvMap uvmap, const ICM::Parameterization_options& options = {})
+{
+  Parameterizer<Mesh> parameterizer(options);
+  const auto bhd = PMP::longest_border(mesh).first;
+  Outcome run;
+  run.status = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
+  run.report = parameterizer.report();
+  return run;
+}
+
+/// The member function directly, with any halfedge (null, interior...).
+Outcome run_direct(Surface_mesh& mesh, SM_halfedge bhd)
+{
+  auto uv = nan_uv_map(mesh);
+  auto parameterized = mesh.add_property_map<SM_vertex, bool>("v:test_parameterized", false).first;
+  Parameterizer<Surface_mesh> parameterizer;
+  Outcome run;
+  run.status = parameterizer.parameterize(mesh, bhd, uv, get(CGAL::vertex_index, mesh), parameterized);
+  run.report = parameterizer.report();
+  return run;
+}
+
+/// The checks every successful run must pass, with the distortion measured independently.
+template <class Mesh, class UvMap>
+void expect_good_run(const Outcome& run, const Mesh& mesh, UvMap uvmap, const std::string& what)
+{
+  ASSERT_EQ(run.status, SMP::OK) << what << ": " << run.report.message;
+  EXPECT_EQ(run.report.status, SMP::OK) << what;
+  EXPECT_TRUE(run.report.message.empty()) << what << ": " << run.report.message;
+  EXPECT_LE(run.report.newton_iterations, 10) << what;
+  EXPECT_LT(run.report.max_curvature_error, 1e-9) << what;
+  EXPECT_EQ(run.report.flipped_faces, 0) << what;
+  EXPECT_LT(run.report.max_layout_length_error, 1e-8) << what;
+  EXPECT_EQ(run.report.boundary_loops, 1) << what;
+  EXPECT_EQ(run.report.genus, 0) << what;
+  EXPECT_EQ(run.report.euler_characteristic, 1) << what;
+  EXPECT_EQ(run.report.vertices, static_cast<int>(num_vertices(mesh))) << what;
+  EXPECT_EQ(run.report.faces, static_cast<int>(num_faces(mesh))) << what;
+
+  int non_finite = 0;
+  for(auto v : vertices(mesh))
+  {
+    const auto p = get(uvmap, v);
+    if(!std::isfinite(p.x()) || !std::isfinite(p.y()))
+      ++non_finite;
+  }
+  EXPECT_EQ(non_finite, 0) << what << ": vertices without a finite UV";
+
+  const ICM::Distortion_measures measures = ICM::measure_distortion(mesh, uvmap);
+  EXPECT_EQ(measures.flipped_faces, 0u) << what;
+  EXPECT_EQ(measures.degenerate_uv_faces, 0u) << what;
+  EXPECT_EQ(measures.faces, num_faces(mesh)) << what;
+}
+
+/// UV length of every edge of a Surface_mesh, keyed by the (sorted) vertex indices.
+template <class UvMap>
+std::map<std::pair<std::size_t, std::size_t>, double> uv_edge_lengths(const Surface_mesh& mesh, UvMap uv)
+{
+  std::map<std::pair<std::size_t, std::size_t>, double> lengths;
+  for(auto e : edges(mesh))
+  {
+    const SM_vertex a = source(e, mesh), b = target(e, mesh);
+    const Point_2 p = get(uv, a), q = get(uv, b);
+    lengths[std::minmax(std::size_t(a), std::size_t(b))] = std::sqrt(CGAL::squared_distance(p, q));
+  }
+  return lengths;
+}
+
+/// Max relative difference of two edge length tables over the same edges.
+double max_relative_difference(const std::map<std::pair<std::size_t, std::size_t>, double>& a,
+                               const std::map<std::pair<std::size_t, std::size_t>, double>& b)
+{
+  EXPECT_EQ(a.size(), b.size());
+  double worst = 0;
+  for(const auto& [key, length] : a)
+  {
+    const auto it = b.find(key);
+    if(it == b.end())
+      return HUGE_VAL;
+    worst = std::max(worst, std::abs(it->second / length - 1.0));
+  }
+  return worst;
+}
+
+/// Per face: UV area / 3D area (raw, not normalised).
+template <class UvMap>
+double face_area_ratio(const Surface_mesh& mesh, UvMap uv, SM_face f)
+{
+  std::array<Point_3, 3> p;
+  std::array<Point_2, 3> q;
+  int c = 0;
+  for(SM_vertex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+  {
+    p[c] = mesh.point(v);
+    q[c] = get(uv, v);
+    ++c;
+  }
+  return CGAL::area(q[0], q[1], q[2]) / std::sqrt(CGAL::squared_area(p[0], p[1], p[2]));
+}
+
+// =============================================================================================
+// 1. The CGAL drop-in path
+
+TEST(ParameterizerDropIn, SurfaceMeshAndPolyhedronAgree)
+{
+  Surface_mesh sm;
+  read_mesh(data_path("nefertiti.off"), sm);
+  auto sm_uv = nan_uv_map(sm);
+  const Outcome sm_run = run_cgal(sm, sm_uv);
+  expect_good_run(sm_run, sm, sm_uv, "Surface_mesh nefertiti");
+  EXPECT_EQ(sm_run.report.vertices, 299);
+  EXPECT_EQ(sm_run.report.faces, 562);
+
+  Polyhedron poly;
+  read_mesh(data_path("nefertiti.off"), poly);
+  using P_vertex = boost::graph_traits<Polyhedron>::vertex_descriptor;
+  std::unordered_map<P_vertex, Point_2> poly_uv_storage;
+  for(P_vertex v : vertices(poly))
+    poly_uv_storage[v] = Point_2(nan_value, nan_value);
+  boost::associative_property_map<std::unordered_map<P_vertex, Point_2>> poly_uv(poly_uv_storage);
+  const Outcome poly_run = run_cgal(poly, poly_uv);
+  expect_good_run(poly_run, poly, poly_uv, "Polyhedron_3 nefertiti");
+
+  // Same file, same vertex order: compare the UV length of every edge.
+  ASSERT_EQ(num_vertices(poly), num_vertices(sm));
+  std::vector<Point_2> poly_uv_by_index;
+  for(P_vertex v : vertices(poly))
+    poly_uv_by_index.push_back(get(poly_uv, v));
+  for(SM_vertex v : vertices(sm))
+    ASSERT_EQ(sm.point(v), (*std::next(vertices(poly).begin(), std::size_t(v)))->point());
+  auto sm_lengths = uv_edge_lengths(sm, sm_uv);
+  auto poly_uv_as_sm = sm.add_property_map<SM_vertex, Point_2>("v:poly_uv").first;
+  for(SM_vertex v : vertices(sm))
+    put(poly_uv_as_sm, v, poly_uv_by_index[std::size_t(v)]);
+  EXPECT_LT(max_relative_difference(sm_lengths, uv_edge_lengths(sm, poly_uv_as_sm)), 1e-8)
+    << "Surface_mesh and Polyhedron_3 layouts differ by more than a rigid motion";
+  EXPECT_EQ(sm_run.report.newton_iterations, poly_run.report.newton_iterations);
+  EXPECT_NEAR(sm_run.report.max_curvature_error, poly_run.report.max_curvature_error, 1e-9);
+}
+
+using SM_edge = Surface_mesh::Edge_index;
+using Seam_edge_pmap = Surface_mesh::Property_map<SM_edge, bool>;
+using Seam_vertex_pmap = Surface_mesh::Property_map<SM_vertex, bool>;
+using Seam_mesh = CGAL::Seam_mesh<Surface_mesh, Seam_edge_pmap, Seam_vertex_pmap>;
+
+/// Breadth-first shortest path (in edges) from `from` to the first vertex `hops` edges away.
+std::vector<SM_vertex> bfs_path(const Surface_mesh& mesh, SM_vertex from, int hops)
+{
+  std::vector<int> depth(num_vertices(mesh), -1);
+  std::vector<SM_vertex> parent(num_vertices(mesh));
+  std::queue<SM_vertex> queue;
+  depth[std::size_t(from)] = 0;
+  queue.push(from);
+  SM_vertex end = from;
+  while(!queue.empty() && end == from)
+  {
+    const SM_vertex v = queue.front();
+    queue.pop();
+    for(SM_vertex w : CGAL::vertices_around_target(mesh.halfedge(v), mesh))
+      if(depth[std::size_t(w)] < 0)
+      {
+        depth[std::size_t(w)] = depth[std::size_t(v)] + 1;
+        parent[std::size_t(w)] = v;
+        if(depth[std::size_t(w)] == hops)
+        {
+          end = w;
+          break;
+        }
+        queue.push(w);
+      }
+  }
+  std::vector<SM_vertex> path;
+  if(end == from)
+    return path;
+  for(SM_vertex v = end; v != from; v = parent[std::size_t(v)])
+    path.push_back(v);
+  path.push_back(from);
+  return path;
+}
+
+TEST(ParameterizerDropIn, SeamMeshOfClosedSphere)
+{
+  Surface_mesh sm;
+  read_mesh(data_path("sphere966.off"), sm);
+  ASSERT_EQ(topology(sm), std::make_pair(0, 2)) << "sphere966 should be a closed sphere";
+
+  Seam_edge_pmap seam_edges = sm.add_property_map<SM_edge, bool>("e:on_seam", false).first;
+  Seam_vertex_pmap seam_vertices = sm.add_property_map<SM_vertex, bool>("v:on_seam", false).first;
+  Seam_mesh mesh(sm, seam_edges, seam_vertices);
+
+  const std::vector<SM_vertex> path = bfs_path(sm, *vertices(sm).begin(), 10);
+  ASSERT_EQ(path.size(), 11u);
+  for(std::size_t i = 0; i + 1 < path.size(); ++i)
+    ASSERT_TRUE(mesh.add_seam(path[i], path[i + 1]));
+  EXPECT_EQ(mesh.number_of_seam_edges(), 10u);
+
+  // The cut sphere: a disk whose border runs both ways along the path; the 9 inner path
+  // vertices have two copies each.
+  ASSERT_EQ(num_vertices(mesh), 966u + 9u);
+  boost::graph_traits<Seam_mesh>::halfedge_descriptor bhd;
+  int border_halfedges = 0;
+  for(auto h : halfedges(mesh))
+    if(is_border(h, mesh))
+    {
+      bhd = h;
+      ++border_halfedges;
+    }
+  ASSERT_EQ(border_halfedges, 20);
+
+  // UVs on the canonical halfedges of the seam mesh vertices, as in CGAL's seam examples.
+  auto uv_pm = sm.add_property_map<SM_halfedge, Point_2>("h:uv", Point_2(nan_value, nan_value)).first;
+  Parameterizer<Seam_mesh> parameterizer;
+  Outcome run;
+  run.status = SMP::parameterize(mesh, parameterizer, bhd, uv_pm);
+  run.report = parameterizer.report();
+  expect_good_run(run, mesh, uv_pm, "Seam_mesh of sphere966");
+  EXPECT_EQ(run.report.vertices, 975);
+  EXPECT_EQ(run.report.faces, static_cast<int>(num_faces(sm)));
+
+  // Both copies of an inner path vertex got a UV, and they differ: the seam really opened.
+  std::map<SM_vertex, std::vector<Point_2>> copies;
+  for(auto v : vertices(mesh))
+    copies[target(v.hd.tmhd, sm)].push_back(get(uv_pm, v));
+  for(std::size_t i = 1; i + 1 < path.size(); ++i)
+  {
+    ASSERT_EQ(copies[path[i]].size(), 2u) << "path vertex " << i;
+    EXPECT_GT(std::sqrt(CGAL::squared_distance(copies[path[i]][0], copies[path[i]][1])), 1e-6)
+      << "path vertex " << i;
+  }
+  EXPECT_EQ(copies[path.front()].size(), 1u);
+  EXPECT_EQ(copies[path.back()].size(), 1u);
+}
+
+// =============================================================================================
+// 2. The report is shared by the copies CGAL's parameterize() makes
+
+TEST(ParameterizerReport, SharedWithCopies)
+{
+  Surface_mesh mesh;
+  read_mesh(data_path("nefertiti.off"), mesh);
+  auto uv = nan_uv_map(mesh);
+  Parameterizer<Surface_mesh> parameterizer;
+  const Parameterizer<Surface_mesh> copy = parameterizer;
+  EXPECT_EQ(&copy.report(), &parameterizer.report());
+  EXPECT_EQ(parameterizer.report().vertices, 0);
+
+  std::vector<std::string> stages;
+  parameterizer.options().progress = [&](const std::string& s) { stages.push_back(s); };
+  const SMP::Error_code status =
+    SMP::parameterize(mesh, parameterizer, PMP::longest_border(mesh).first, uv);  // by value
+  ASSERT_EQ(status, SMP::OK);
+  const ICM::Parameterization_report& report = parameterizer.report();
+  EXPECT_EQ(report.status, SMP::OK);
+  EXPECT_EQ(report.vertices, 299);
+  EXPECT_EQ(report.faces, 562);
+  EXPECT_EQ(report.boundary_loops, 1);
+  EXPECT_GE(report.newton_iterations, 1);
+  EXPECT_EQ(report.residual_history.size(), static_cast<std::size_t>(report.newton_iterations) + 1);
+  EXPECT_EQ(report.layout, "propagation");
+  EXPECT_GT(report.seconds_total, 0.0);
+  EXPECT_GE(report.seconds_total, report.seconds_index + report.seconds_metric +
+                                    report.seconds_optimum + report.seconds_layout - 1e-9);
+  EXPECT_EQ(copy.report().vertices, 299) << "a copy made before the run sees it too";
+  EXPECT_EQ(stages, (std::vector<std::string>{"index", "metric", "optimum", "layout"}));
+
+  // A failing run through another copy replaces the report everyone sees.
+  Parameterizer<Surface_mesh> second = parameterizer;
+  auto parameterized = mesh.add_property_map<SM_vertex, bool>("v:p", false).first;
+  const SM_halfedge interior = mesh.halfedge(*faces(mesh).begin());
+  EXPECT_EQ(second.parameterize(mesh, interior, uv, get(CGAL::vertex_index, mesh), parameterized),
+            SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_EQ(parameterizer.report().status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_FALSE(parameterizer.report().message.empty());
+  EXPECT_EQ(parameterizer.report().vertices, 0);
+}
+
+// =============================================================================================
+// 3. Analytic cases
+
+TEST(ParameterizerAnalytic, EquilateralGridIsASimilarity)
+{
+  // All edges equal: tangent circles of radius l/2 (phi = 0) reproduce every edge exactly,
+  // every interior vertex is already flat, so the optimum is the input metric itself.
+  Surface_mesh mesh = equilateral_hexagon(5);
+  ASSERT_EQ(num_vertices(mesh), 91u);
+  ASSERT_EQ(num_faces(mesh), 150u);
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  expect_good_run(run, mesh, uv, "equilateral hexagon");
+  EXPECT_EQ(run.report.clamped_edges, 0);
+
+  double ratio_min = HUGE_VAL, ratio_max = 0;
+  for(auto e : edges(mesh))
+  {
+    const SM_vertex a = source(e, mesh), b = target(e, mesh);
+    const double ratio = std::sqrt(CGAL::squared_distance(get(uv, a), get(uv, b)) /
+                                   CGAL::squared_distance(mesh.point(a), mesh.point(b)));
+    ratio_min = std::min(ratio_min, ratio);
+    ratio_max = std::max(ratio_max, ratio);
+  }
+  EXPECT_LT(ratio_max / ratio_min - 1.0, 1e-9) << "UV is not a similarity of the input";
+  // And the similarity preserves orientation: no face is mirrored.
+  for(SM_face f : faces(mesh))
+    EXPECT_GT(face_area_ratio(mesh, uv, f), 0.0);
+
+  const ICM::Distortion_measures m = ICM::measure_distortion(mesh, uv);
+  EXPECT_LT(m.conformality, 1e-18);
+  EXPECT_LT(m.angle_distortion, 1e-18);
+  EXPECT_LT(m.log_area_distortion, 1e-18);
+  EXPECT_NEAR(m.qc_max, 1.0, 1e-9);
+}
+
+TEST(ParameterizerAnalytic, JitteredPlanarDiskIsNearlyIsometric)
+{
+  // Irregular planar triangles: the circle packing metric does not reproduce them exactly
+  // (some intersection angles are clamped to pi/2), so the result is close to, not equal to,
+  // a similarity.
+  Surface_mesh mesh = jittered_planar_disk(8, 7);
+  ASSERT_EQ(topology(mesh), std::make_pair(1, 1));
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  expect_good_run(run, mesh, uv, "jittered planar disk");
+  const ICM::Distortion_measures m = ICM::measure_distortion(mesh, uv);
+  RecordProperty("conformality", std::to_string(m.conformality));
+  RecordProperty("log_area_distortion", std::to_string(m.log_area_distortion));
+  RecordProperty("qc_mean", std::to_string(m.qc_mean));
+  EXPECT_LT(m.conformality, 0.01);
+  EXPECT_LT(m.log_area_distortion, 0.05);
+  EXPECT_LT(m.qc_mean, 1.1);
+  EXPECT_GT(m.area_ratio_min, 0.5);
+  EXPECT_LT(m.area_ratio_max, 2.0);
+}
+
+TEST(ParameterizerAnalytic, SphericalCapShrinksTowardsTheCentre)
+{
+  // The free-boundary optimum keeps the original scale on the border (u_S = u0_S) and is
+  // conformal, so its log scale solves the flattening equation with u = 0 on the rim.
+  // Stereographic projection of the unit sphere is conformal with linear scale
+  // 1/cos^2(theta/2); shifted to scale 1 at the rim theta = 60 deg, the area ratio of the
+  // flat map at polar angle theta is (cos^2(30 deg) / cos^2(theta/2))^2: 0.5625 at the centre,
+  // 1 at the rim. Positive curvature is "pushed out" through the border, so centre faces
+  // shrink more than rim faces.
+  const double max_polar = CGAL_PI / 3;
+  Surface_mesh mesh = spherical_cap(12, max_polar);
+  ASSERT_EQ(topology(mesh), std::make_pair(1, 1));
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  expect_good_run(run, mesh, uv, "spherical cap");
+
+  auto expected_ratio = [&](double theta) {
+    const double c = std::cos(max_polar / 2), d = std::cos(theta / 2);
+    return std::pow(c * c / (d * d), 2);
+  };
+  double center_sum = 0, rim_sum = 0, worst = 0;
+  int center_count = 0, rim_count = 0;
+  for(SM_face f : faces(mesh))
+  {
+    Point_3 centroid(0, 0, 0);
+    bool on_rim = false, at_center = false;
+    for(SM_halfedge h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh))
+    {
+      const SM_vertex v = target(h, mesh);
+      on_rim = on_rim || mesh.is_border(v);
+      at_center = at_center || mesh.point(v).z() == 1.0;
+      centroid = centroid + (mesh.point(v) - CGAL::ORIGIN) / 3.0;
+    }
+    const double ratio = face_area_ratio(mesh, uv, f);
+    const double theta = std::acos(centroid.z() / std::sqrt(centroid.x() * centroid.x() +
+                                                            centroid.y() * centroid.y() +
+                                                            centroid.z() * centroid.z()));
+    worst = std::max(worst, std::abs(ratio / expected_ratio(theta) - 1.0));
+    if(at_center)
+    {
+      center_sum += ratio;
+      ++center_count;
+    }
+    if(on_rim)
+    {
+      rim_sum += ratio;
+      ++rim_count;
+    }
+  }
+  ASSERT_EQ(center_count, 6);
+  ASSERT_EQ(rim_count, 6 * 12 + 6 * 11);
+  const double center = center_sum / center_count, rim = rim_sum / rim_count;
+  RecordProperty("center_area_ratio", std::to_string(center));
+  RecordProperty("rim_area_ratio", std::to_string(rim));
+  RecordProperty("worst_relative_deviation_from_stereographic", std::to_string(worst));
+  EXPECT_LT(center, rim);
+  // Face centroids: polar angle ~ 1/3 ring at the centre, ~ 11 2/3 rings at the rim.
+  EXPECT_NEAR(center / rim,
+              expected_ratio(max_polar / 36) / expected_ratio(max_polar * (1 - 1.0 / 36)), 0.05);
+  EXPECT_LT(worst, 0.1) << "area ratios deviate from the smooth (stereographic) solution";
+}
+
+// =============================================================================================
+// 4. The disk meshes of the shared data set
+
+class SharedDisk : public testing::TestWithParam<const char*>
+{
+};
+
+TEST_P(SharedDisk, Parameterizes)
+{
+  if(!shared_dir_exists())
+    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
+  Surface_mesh mesh;
+  read_mesh(shared_path(GetParam()), mesh);
+  ASSERT_EQ(topology(mesh).first, 1) << GetParam() << " should have one boundary loop";
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  expect_good_run(run, mesh, uv, GetParam());
+  RecordProperty("newton_iterations", run.report.newton_iterations);
+  RecordProperty("seconds_total", std::to_string(run.report.seconds_total));
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, SharedDisk,
+                         testing::Values("nefertiti.off", "mesh_with_border.off", "three_peaks.off",
+                                         "mushroom.off", "cylinder_locally_refined.off",
+                                         "lion-head.off", "camelhead.off", "mannequin-devil.off",
+                                         "horse.obj"),
+                         [](const testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           for(char& c : name)
+                             if(!std::isalnum(static_cast<unsigned char>(c)))
+                               c = '_';
+                           return name;
+                         });
+
+TEST(ParameterizerLayout, PropagationAndHarmonicAgree)
+{
+  if(!shared_dir_exists())
+    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
+  std::map<std::pair<std::size_t, std::size_t>, double> lengths[2];
+  const ICM::Layout_method methods[2] = {ICM::Layout_method::Propagation, ICM::Layout_method::Harmonic};
+  const char* names[2] = {"propagation", "harmonic"};
+  for(int m = 0; m < 2; ++m)
+  {
+    Surface_mesh mesh;
+    read_mesh(shared_path("three_peaks.off"), mesh);
+    auto uv = nan_uv_map(mesh);
+    ICM::Parameterization_options options;
+    options.layout = methods[m];
+    const Outcome run = run_cgal(mesh, uv, options);
+    expect_good_run(run, mesh, uv, std::string("three_peaks ") + names[m]);
+    EXPECT_EQ(run.report.layout, names[m]);
+    lengths[m] = uv_edge_lengths(mesh, uv);
+  }
+  EXPECT_LT(max_relative_difference(lengths[0], lengths[1]), 1e-8);
+}
+
+// =============================================================================================
+// 5. Nearly closed surfaces: a closed mesh with the star of one vertex removed
+
+struct Nearly_closed
+{
+  const char* name;
+  bool shared;
+  double min_area_ratio_span;  // area_ratio_max / area_ratio_min must exceed this
+};
+
+class NearlyClosed : public testing::TestWithParam<Nearly_closed>
+{
+};
+
+TEST_P(NearlyClosed, Parameterizes)
+{
+  const Nearly_closed c = GetParam();
+  if(c.shared && !shared_dir_exists())
+    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
+  Surface_mesh mesh;
+  read_mesh(c.shared ? shared_path(c.name) : data_path(c.name), mesh);
+  ASSERT_EQ(topology(mesh), std::make_pair(0, 2)) << c.name << " should be a closed sphere";
+  const std::size_t vertices_before = num_vertices(mesh), faces_before = num_faces(mesh);
+  const SM_vertex v = *vertices(mesh).begin();
+  const std::size_t degree = CGAL::halfedges_around_target(mesh.halfedge(v), mesh).size();
+  punch_hole(mesh, v);
+  ASSERT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  ASSERT_EQ(num_vertices(mesh), vertices_before - 1);
+  ASSERT_EQ(num_faces(mesh), faces_before - degree);
+  ASSERT_EQ(topology(mesh), std::make_pair(1, 1)) << "not a disk after removing one vertex star";
+
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  expect_good_run(run, mesh, uv, std::string(c.name) + " minus one vertex star");
+  const ICM::Distortion_measures m = ICM::measure_distortion(mesh, uv);
+  const double span = m.area_ratio_max / m.area_ratio_min;
+  RecordProperty("area_ratio_span", std::to_string(span));
+  RecordProperty("newton_iterations", run.report.newton_iterations);
+  // The whole closed surface is squeezed inside its tiny hole's border: this area ratio span
+  // is what makes linear methods such as LSCM collapse on these inputs.
+  EXPECT_GT(span, c.min_area_ratio_span) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, NearlyClosed,
+                         testing::Values(Nearly_closed{"sphere966.off", false, 10.0},
+                                         Nearly_closed{"cow.off", true, 1e4},
+                                         Nearly_closed{"bull.off", true, 1e4}),
+                         [](const testing::TestParamInfo<Nearly_closed>& info) {
+                           std::string name = info.param.name;
+                           return name.substr(0, name.find('.'));
+                         });
+
+// =============================================================================================
+// 6. Bad input: a clear error code and a human reason, never a crash
+
+TEST(ParameterizerBadInput, EmptyMeshWithNullHalfedge)
+{
+  Surface_mesh mesh;
+  const Outcome run = run_direct(mesh, Surface_mesh::null_halfedge());
+  EXPECT_EQ(run.status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_EQ(run.report.status, run.status);
+  EXPECT_NE(run.report.message.find("no border halfedge"), std::string::npos) << run.report.message;
+  EXPECT_EQ(run.report.vertices, 0);
+}
+
+TEST(ParameterizerBadInput, EdgeWithoutFaces)
+{
+  // The only way to pass a border halfedge of a mesh with no face: a lone edge.
+  Surface_mesh mesh;
+  const SM_vertex a = mesh.add_vertex(Point_3(0, 0, 0)), b = mesh.add_vertex(Point_3(1, 0, 0));
+  const SM_halfedge h = mesh.add_edge(a, b);
+  mesh.set_target(h, b);
+  mesh.set_target(mesh.opposite(h), a);
+  mesh.set_next(h, mesh.opposite(h));
+  mesh.set_next(mesh.opposite(h), h);
+  mesh.set_halfedge(a, mesh.opposite(h));
+  mesh.set_halfedge(b, h);
+  ASSERT_TRUE(is_border(h, mesh));
+  const Outcome run = run_direct(mesh, h);
+  EXPECT_EQ(run.status, SMP::ERROR_EMPTY_MESH);
+  EXPECT_NE(run.report.message.find("no faces"), std::string::npos) << run.report.message;
+}
+
+TEST(ParameterizerBadInput, QuadFace)
+{
+  Surface_mesh mesh;
+  const SM_vertex v0 = mesh.add_vertex(Point_3(0, 0, 0)), v1 = mesh.add_vertex(Point_3(1, 0, 0)),
+                  v2 = mesh.add_vertex(Point_3(1, 1, 0)), v3 = mesh.add_vertex(Point_3(0, 1, 0));
+  const SM_face f = mesh.add_face(v0, v1, v2, v3);
+  ASSERT_NE(f, Surface_mesh::null_face());
+  const Outcome run = run_direct(mesh, mesh.opposite(mesh.halfedge(f)));
+  EXPECT_EQ(run.status, SMP::ERROR_NON_TRIANGULAR_MESH);
+  EXPECT_NE(run.report.message.find("more than 3 sides"), std::string::npos) << run.report.message;
+}
+
+TEST(ParameterizerBadInput, AnnulusIsNotADisk)
+{
+  Surface_mesh mesh = ring_disk(4, [](int i, int k, int n, double& a) {
+    a = 2 * CGAL_PI * k / n;
+    return Point_3(i * std::cos(a), i * std::sin(a), 0);
+  }, 1);
+  ASSERT_EQ(topology(mesh), std::make_pair(2, 0));
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  EXPECT_EQ(run.status, SMP::ERROR_NO_TOPOLOGICAL_DISC);
+  EXPECT_NE(run.report.message.find("2 boundary loops"), std::string::npos) << run.report.message;
+  EXPECT_NE(run.report.message.find("not a disk"), std::string::npos) << run.report.message;
+  EXPECT_EQ(run.report.boundary_loops, 2);
+  for(SM_vertex v : vertices(mesh))
+    EXPECT_TRUE(std::isnan(get(uv, v).x())) << "a failed run wrote UVs";
+}
+
+TEST(ParameterizerBadInput, ZeroAreaFace)
+{
+  // a, b, c collinear; face (a, c, b) has no area; faces (a, b, d), (b, c, d) are fine.
+  Surface_mesh mesh;
+  const SM_vertex a = mesh.add_vertex(Point_3(0, 0, 0)), b = mesh.add_vertex(Point_3(1, 0, 0)),
+                  c = mesh.add_vertex(Point_3(2, 0, 0)), d = mesh.add_vertex(Point_3(1, 1, 0));
+  ASSERT_NE(mesh.add_face(a, b, d), Surface_mesh::null_face());
+  ASSERT_NE(mesh.add_face(b, c, d), Surface_mesh::null_face());
+  ASSERT_NE(mesh.add_face(a, c, b), Surface_mesh::null_face());
+  ASSERT_EQ(topology(mesh), std::make_pair(1, 1));
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  EXPECT_NE(run.status, SMP::OK);
+  EXPECT_EQ(run.status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(run.report.message.find("degenerate"), std::string::npos) << run.report.message;
+}
+
+TEST(ParameterizerBadInput, NanCoordinate)
+{
+  Surface_mesh mesh = jittered_planar_disk(3, 1);
+  mesh.point(*std::next(vertices(mesh).begin(), 5)) = Point_3(0.1, nan_value, 0);
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  EXPECT_EQ(run.status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(run.report.message.find("non-finite"), std::string::npos) << run.report.message;
+}
+
+TEST(ParameterizerBadInput, InfiniteCoordinate)
+{
+  Surface_mesh mesh = jittered_planar_disk(3, 1);
+  mesh.point(*vertices(mesh).begin()) = Point_3(std::numeric_limits<double>::infinity(), 0, 0);
+  auto uv = nan_uv_map(mesh);
+  const Outcome run = run_cgal(mesh, uv);
+  EXPECT_EQ(run.status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(run.report.message.find("non-finite"), std::string::npos) << run.report.message;
+}
+
+TEST(ParameterizerBadInput, HalfedgeNotOnBorder)
+{
+  Surface_mesh mesh = jittered_planar_disk(3, 1);
+  SM_halfedge interior = Surface_mesh::null_halfedge();
+  for(SM_halfedge h : halfedges(mesh))
+    if(!is_border(h, mesh) && !is_border(opposite(h, mesh), mesh))
+      interior = h;
+  ASSERT_NE(interior, Surface_mesh::null_halfedge());
+  const Outcome run = run_direct(mesh, interior);
+  EXPECT_EQ(run.status, SMP::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(run.report.message.find("not on a border"), std::string::npos) << run.report.message;
+
+  // The face side of a border edge is not a border halfedge either.
+  SM_halfedge face_side = Surface_mesh::null_halfedge();
+  for(SM_halfedge h : halfedges(mesh))
+    if(is_border(opposite(h, mesh), mesh))
+      face_side = h;
+  EXPECT_EQ(run_direct(mesh, face_side).status, SMP::ERROR_WRONG_PARAMETER);
+}
+
+} // namespace
