@@ -205,7 +205,7 @@ int main(int argc, char** argv)
   const SMP::Error_code status = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
   const ICM::Parameterization_report& report = parameterizer.report();
   if(status != SMP::OK)
-    return fail(std::string(SMP::get_error_message(status)) + ": " + report.message);
+    return fail(std::string(ICM::error_message(status)) + ": " + report.message);
 
   t = Clock::now();
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh(mesh, uvmap);

@@ -30,7 +30,7 @@ int main(int argc, char** argv)
   const ICM::Parameterization_report& report = parameterizer.report();
   if(status != SMP::OK)
   {
-    std::cerr << SMP::get_error_message(status) << ": " << report.message << "\n";
+    std::cerr << ICM::error_message(status) << ": " << report.message << "\n";
     return 1;
   }
   std::cout << report.vertices << " vertices, " << report.newton_iterations

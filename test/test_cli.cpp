@@ -283,6 +283,23 @@ TEST(Cli, QuadFace)
   expect_clean_failure(box, r, "non-triangle", {"quad.off"});
 }
 
+TEST(Cli, ZeroAreaFace)
+{
+  Sandbox box;
+  // A valid disk (one border loop, genus 0) whose third face has three collinear corners:
+  // it passes the tool's own checks and reaches the parameterizer, which refuses it.
+  write_file(box.file("flat.off"),
+             "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n");
+  const Sandbox::Result r = box.run("flat.off -o out.obj");
+  EXPECT_NE(r.exit_code, 128 + 6)
+    << "CLI BUG: icm_param aborts (std::logic_error 'basic_string: construction from null') "
+       "because CGAL 5.5.1's SMP::get_error_message() has no entry for "
+       "ERROR_NO_TOPOLOGICAL_BALL, so get_error_message(ERROR_WRONG_PARAMETER) is a null "
+       "pointer, which icm_param passes to std::string. stderr:\n"
+    << r.err;
+  expect_clean_failure(box, r, "degenerate", {"flat.off"});
+}
+
 TEST(Cli, UnknownOption)
 {
   Sandbox box;
