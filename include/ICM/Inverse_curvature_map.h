@@ -147,12 +147,6 @@ public:
       residual.swap(trial_residual);
       ++report.iterations;
       report.step_lengths.push_back(alpha);
-#ifdef ICM_DEBUG_NEWTON
-      {
-        double wmin = *std::min_element(w_.begin(), w_.end());
-        std::fprintf(stderr, "it %d alpha %g max|du| %g wmin %g res %g\n", report.iterations, alpha, du.cwiseAbs().maxCoeff(), wmin, max_norm(residual));
-      }
-#endif
       report.residual_history.push_back(max_norm(residual));
     }
     report.converged = true;
