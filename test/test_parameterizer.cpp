@@ -261,7 +261,8 @@ Outcome run_direct(Surface_mesh& mesh, SM_halfedge bhd)
 /// The checks every successful run must pass, with the distortion measured independently.
 template <class Mesh, class UvMap>
 void expect_good_run(const Outcome& run, const Mesh& mesh, UvMap uvmap, const std::string& what,
-                     int max_newton_iterations = 10, bool allow_degenerate_uv_faces = false)
+                     int max_newton_iterations = 10, bool allow_degenerate_uv_faces = false,
+                     double max_layout_length_error = 1e-8)
 {
   ASSERT_EQ(run.status, SMP::OK) << what << ": " << run.report.message;
   EXPECT_EQ(run.report.status, SMP::OK) << what;
@@ -269,7 +270,7 @@ void expect_good_run(const Outcome& run, const Mesh& mesh, UvMap uvmap, const st
   EXPECT_LE(run.report.newton_iterations, max_newton_iterations) << what;
   EXPECT_LT(run.report.max_curvature_error, 1e-9) << what;
   EXPECT_EQ(run.report.flipped_faces, 0) << what;
-  EXPECT_LT(run.report.max_layout_length_error, 1e-8) << what;
+  EXPECT_LT(run.report.max_layout_length_error, max_layout_length_error) << what;
   EXPECT_EQ(run.report.boundary_loops, 1) << what;
   EXPECT_EQ(run.report.genus, 0) << what;
   EXPECT_EQ(run.report.euler_characteristic, 1) << what;
@@ -780,24 +781,14 @@ TEST_P(NearlyClosed, Parameterizes)
   auto uv = nan_uv_map(mesh);
   const Outcome run = run_cgal(mesh, uv);
   RecordProperty("newton_iterations", run.report.newton_iterations);
-  if(run.status != SMP::OK)
-  {
-    // Known failure on bull.off (vertex 0, a 6-edge hole): Newton stalls with max interior
-    // |k| ~ 2.0, steps shrinking to 1e-5..1e-11, u - u0 down to -32 and negative edge
-    // weights (-1.7e-16), i.e. the circle packing curvature loses double precision at
-    // conformal factors of e^-32 (CHOLMOD then reports "not positive definite").
-    ADD_FAILURE() << "LIBRARY ISSUE: the free-boundary optimum of " << c.name
-                  << " minus one vertex star failed (Error_code " << int(run.status) << ": "
-                  << run.report.message << ") after " << run.report.newton_iterations
-                  << " Newton iterations; residual history ends at "
-                  << (run.report.residual_history.empty() ? -1.0 : run.report.residual_history.back());
-    return;
-  }
-  // Far from the small hole the optimum has to move u by several units, and each Newton step
-  // is capped (max_step = 1): more iterations than on ordinary disks (cow: 23).
+  // Far from the small hole the optimum has to move u by tens of units, and each Newton step
+  // is capped (max_step): more iterations than on ordinary disks.
   // Protrusions (legs, horns) are compressed by factors below 1e-14 in area, so some UV
-  // faces count as degenerate for measure_distortion; none is flipped.
-  expect_good_run(run, mesh, uv, std::string(c.name) + " minus one vertex star", 40, true);
+  // faces count as degenerate for measure_distortion; none is flipped. Edges there span a
+  // few million representable steps of their coordinates: the layout reproduces the metric
+  // to the library's default tolerance, not to the 1e-8 of ordinary disks.
+  expect_good_run(run, mesh, uv, std::string(c.name) + " minus one vertex star", 12, true,
+                  ICM::Parameterization_options().max_layout_length_error);
   if(HasFatalFailure())
     return;
   const ICM::Distortion_measures m = ICM::measure_distortion(mesh, uv);
@@ -811,10 +802,12 @@ TEST_P(NearlyClosed, Parameterizes)
 
 INSTANTIATE_TEST_SUITE_P(Meshes, NearlyClosed,
                          testing::Values(Nearly_closed{"sphere966.off", false, 1e5},
-                                         Nearly_closed{"cow.off", true, 1e4}),
-                         // bull.off minus one vertex star is a known failure: its optimum needs
-                         // conformal factors near e^-32, where the circle packing curvature
-                         // loses double precision and Newton stalls (see the stop note).
+                                         Nearly_closed{"cow.off", true, 1e4},
+                                         Nearly_closed{"bull.off", true, 1e8},
+                                         Nearly_closed{"camel.off", true, 1e8},
+                                         Nearly_closed{"bear.off", true, 1e4},
+                                         Nearly_closed{"armadillo.off", true, 1e8},
+                                         Nearly_closed{"bunny00.off", true, 1e4}),
                          [](const testing::TestParamInfo<Nearly_closed>& info) {
                            std::string name = info.param.name;
                            return name.substr(0, name.find('.'));

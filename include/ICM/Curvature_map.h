@@ -1,10 +1,10 @@
 // Step 2: the curvature map K(u) and its Jacobian, the dynamic Laplacian (paper eq. 1 and 3).
 //
 // One pass over the faces gives edge lengths, corner angles, vertex curvatures and the edge
-// weights w_ij = d theta_i / d u_j summed over the faces at ij. The weights come from the
-// chain rule (angle/length derivatives of the law of cosines times length/radius
-// derivatives of the metric), which equals the paper's h_ij / l_ij and works for any metric
-// policy that provides `length` and `length_derivative`.
+// weights w_ij = d theta_i / d u_j summed over the faces at ij (the paper's h_ij / l_ij).
+// A metric policy provides `length(e, gi, gj)` and `face_geometry(edges, radii, lengths)`,
+// the face's angles and weights, because only the metric knows how to compute them without
+// cancellation when the radii of one face differ by many orders of magnitude.
 
 #ifndef ICM_CURVATURE_MAP_H
 #define ICM_CURVATURE_MAP_H
@@ -19,33 +19,6 @@
 #include <vector>
 
 namespace ICM {
-
-/// Angles and area of a triangle from its side lengths; `l[c]` is opposite corner `c`.
-struct Triangle_angles
-{
-  std::array<double, 3> angle;
-  std::array<double, 3> cosine;
-  double area;
-};
-
-/// Heron's formula in product form and atan2 for the angles: accurate for thin triangles,
-/// where acos of the law of cosines loses half the digits.
-inline Triangle_angles triangle_angles(const std::array<double, 3>& l)
-{
-  const double a = l[0], b = l[1], c = l[2];
-  const double p = (a + b + c) * (-a + b + c) * (a - b + c) * (a + b - c);
-  Triangle_angles t;
-  t.area = 0.25 * std::sqrt(std::max(p, 0.0));
-  const double four_area = 4.0 * t.area;
-  for(int i = 0; i < 3; ++i)
-  {
-    const double li = l[i], lj = l[(i + 1) % 3], lk = l[(i + 2) % 3];
-    const double twice_cos_times = lj * lj + lk * lk - li * li; // 2 lj lk cos(theta_i)
-    t.angle[i] = std::atan2(four_area, twice_cos_times);
-    t.cosine[i] = twice_cos_times / (2.0 * lj * lk);
-  }
-  return t;
-}
 
 /// Evaluates K(u) and the dynamic Laplacian weights on a fixed mesh and metric.
 /// Holds per-edge length storage so repeated evaluations allocate nothing.
@@ -87,31 +60,33 @@ public:
     for(int f = 0; f < index_.number_of_faces(); ++f)
     {
       const std::array<int, 3>& e = index_.face_edges[f];
-      const Triangle_angles t = triangle_angles({lengths_[e[0]], lengths_[e[1]], lengths_[e[2]]});
+      const Face_geometry face = face_geometry(f);
       for(int c = 0; c < 3; ++c)
-        k[index_.faces[f][c]] -= t.angle[c];
+        k[index_.faces[f][c]] -= face.angles.angle[c];
       if(weights)
         for(int c = 0; c < 3; ++c)
-          (*weights)[e[c]] += face_weight(f, c, t);
+          (*weights)[e[c]] += face.weight[c];
     }
   }
 
-  /// d theta_a / d u_b in face f for the edge ab opposite corner c (a = c+1, b = c+2).
-  /// Law of cosines: d theta_a/d l_a = l_a/(2A), d theta_a/d l_c = -l_a cos(theta_b)/(2A);
-  /// theta_a depends on u_b through l_a (edge bc) and l_c (edge ab).
-  /// Uses the radii and lengths of the last `compute_lengths`.
-  double face_weight(int f, int c, const Triangle_angles& t) const
+  /// Corner angles of every face at the u of the last `evaluate` or `compute_lengths`.
+  std::vector<Triangle_angles> face_angles() const
   {
-    const int ca = (c + 1) % 3, cb = (c + 2) % 3;
-    const std::array<int, 3>& v = index_.faces[f];
-    const std::array<int, 3>& e = index_.face_edges[f];
-    const double la = lengths_[e[ca]], lc = lengths_[e[c]];
-    const double dla_dub = metric_.length_derivative(e[ca], radii_[v[cb]], radii_[v[c]], la);
-    const double dlc_dub = metric_.length_derivative(e[c], radii_[v[cb]], radii_[v[ca]], lc);
-    return la * (dla_dub - t.cosine[cb] * dlc_dub) / (2.0 * t.area);
+    std::vector<Triangle_angles> angles(index_.number_of_faces());
+    for(int f = 0; f < index_.number_of_faces(); ++f)
+      angles[f] = face_geometry(f).angles;
+    return angles;
   }
 
 private:
+  Face_geometry face_geometry(int f) const
+  {
+    const std::array<int, 3>& v = index_.faces[f];
+    const std::array<int, 3>& e = index_.face_edges[f];
+    return metric_.face_geometry(e, {radii_[v[0]], radii_[v[1]], radii_[v[2]]},
+                                 {lengths_[e[0]], lengths_[e[1]], lengths_[e[2]]});
+  }
+
   const internal::Mesh_index& index_;
   const Metric& metric_;
   std::vector<double> radii_;

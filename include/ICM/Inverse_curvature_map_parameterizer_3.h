@@ -67,7 +67,8 @@ struct Parameterization_options
   /// in double precision the breadth-first propagation still reproduces the metric to
   /// 1e-10 on the 40k-face horse at a tenth of the cost of a factorization.
   int harmonic_layout_min_faces = 200000;
-  /// A layout whose edge lengths differ from the metric's by more than this fails.
+  /// A layout whose edge lengths differ from the metric's by more than this fails (relative,
+  /// see `Layout_check::max_relative_length_error`).
   double max_layout_length_error = 1e-6;
   /// Called at the start of each stage with its name ("index", "metric", "optimum", "layout").
   std::function<void(const std::string&)> progress;
@@ -85,7 +86,7 @@ struct Parameterization_report
   int newton_iterations = 0;
   std::vector<double> residual_history;  ///< max |k| over interior vertices per iteration
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
-  double max_layout_length_error = 0;    ///< relative, UV edge length vs metric
+  double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
   int flipped_faces = 0;
   std::string layout;                    ///< "propagation" or "harmonic"
   double seconds_index = 0, seconds_metric = 0, seconds_optimum = 0, seconds_layout = 0,
@@ -229,7 +230,7 @@ public:
     else
     {
       report.layout = "propagation";
-      uv = layout_by_propagation(index, lengths);
+      uv = layout_by_propagation(index, lengths, curvature.face_angles());
     }
     const Layout_check check = check_layout(index, lengths, uv);
     report.flipped_faces = check.flipped_faces;
