@@ -20,6 +20,8 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -155,6 +157,7 @@ struct Options {
   int runs = 0;  // 0: automatic (3 if one run takes < 2 s, else 1)
   double time_limit = 600.0;
   int subdivide = 0;
+  bool open = false;
   std::vector<std::string> methods;  // empty: all
   std::string svg_panels;
   std::vector<std::string> meshes;
@@ -162,7 +165,7 @@ struct Options {
 
 const char* usage_text =
     "usage: compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c]\n"
-    "               [--subdivide K] [--svg-panels FILE] [--quiet] MESH...\n"
+    "               [--subdivide K] [--open] [--svg-panels FILE] [--quiet] MESH...\n"
     "\n"
     "Runs each parameterization method on each mesh (OFF/OBJ/PLY, a topological disk) and\n"
     "prints the paper's Table I plus time, memory and flips as Markdown (or JSON lines).\n"
@@ -174,6 +177,8 @@ const char* usage_text =
     "                     'timeout' (default 600)\n"
     "  --methods a,b      run only these methods (default: all)\n"
     "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
+    "  --open             open each closed mesh by removing the faces around its first\n"
+    "                     vertex: a nearly closed disk, like a scan with one small hole\n"
     "  --svg-panels FILE  write the UV layouts of icm_free_boundary, lscm and arap for the\n"
     "                     first mesh side by side to FILE (faces coloured by log area ratio)\n"
     "  --quiet            no progress lines on stderr\n";
@@ -240,6 +245,8 @@ Options parse_options(int argc, char** argv, const std::vector<Method>& registry
     } else if (a == "--subdivide") {
       if (!parse_int(value(i, a), o.subdivide) || o.subdivide < 0 || o.subdivide > 8)
         usage_error("--subdivide needs an integer in [0, 8]");
+    } else if (a == "--open") {
+      o.open = true;
     } else if (a == "--methods") {
       o.methods = split_commas(value(i, a));
       if (o.methods.empty()) usage_error("--methods needs at least one name");
@@ -427,25 +434,9 @@ bool has_usable_uvs(SMP::Error_code code) {
   return code == SMP::OK || code == SMP::ERROR_NO_1_TO_1_MAPPING;
 }
 
-// The text of an Error_code: CGAL's get_error_message(). In CGAL 5.5 its table misses the
-// entry of ERROR_NO_TOPOLOGICAL_BALL, so from that code on it answers with the next code's
-// text and, for ERROR_WRONG_PARAMETER, with a null pointer; then the texts come from here.
+// The text of an Error_code (ICM's table: CGAL 5.5.1's get_error_message is off by one).
 std::string error_text(int code) {
-  const char* last = SMP::get_error_message(SMP::ERROR_WRONG_PARAMETER);
-  const bool cgal_in_sync =
-      last != nullptr && std::string(last) == "A method received an unexpected parameter";
-  if (cgal_in_sync || code < SMP::ERROR_NO_TOPOLOGICAL_BALL || code > SMP::ERROR_WRONG_PARAMETER) {
-    const char* s = SMP::get_error_message(code);
-    return s != nullptr ? s : "Unknown error";
-  }
-  switch (code) {
-    case SMP::ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
-    case SMP::ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
-    case SMP::ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
-    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
-    case SMP::ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
-    default: return "A method received an unexpected parameter";
-  }
+  return ICM::error_message(static_cast<SMP::Error_code>(code));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -674,7 +665,7 @@ std::string mesh_name(const std::string& path) {
 }
 
 // Reads and prepares a mesh; on failure returns false with a reason.
-bool load_mesh(const std::string& path, int subdivide, Mesh& mesh, std::string& error) {
+bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::string& error) {
   mesh.clear();
   bool ok = false;
   try {
@@ -692,9 +683,15 @@ bool load_mesh(const std::string& path, int subdivide, Mesh& mesh, std::string& 
     return false;
   }
   if (!CGAL::is_triangle_mesh(mesh)) PMP::triangulate_faces(mesh);
-  if (subdivide > 0)
+  if (opt.subdivide > 0)
     CGAL::Subdivision_method_3::Loop_subdivision(
-        mesh, CGAL::parameters::number_of_iterations(static_cast<unsigned int>(subdivide)));
+        mesh, CGAL::parameters::number_of_iterations(static_cast<unsigned int>(opt.subdivide)));
+  if (opt.open && CGAL::is_closed(mesh)) {
+    std::vector<face_descriptor> around;
+    for (face_descriptor f : CGAL::faces_around_target(halfedge(*vertices(mesh).begin(), mesh), mesh))
+      around.push_back(f);
+    for (face_descriptor f : around) CGAL::Euler::remove_face(halfedge(f, mesh), mesh);
+  }
   if (mesh.has_garbage()) mesh.collect_garbage();
   return true;
 }
@@ -883,7 +880,7 @@ bool write_panels(const std::string& mesh_path, const Options& opt,
                   const std::vector<Method>& registry) {
   Mesh mesh;
   std::string error;
-  if (!load_mesh(mesh_path, opt.subdivide, mesh, error)) {
+  if (!load_mesh(mesh_path, opt, mesh, error)) {
     std::cerr << "compare: --svg-panels: " << mesh_path << ": " << error << "\n";
     return false;
   }
@@ -954,6 +951,8 @@ int main(int argc, char** argv) {
               << "; time limit " << opt.time_limit << " s per run"
               << (opt.subdivide > 0 ? "; Loop subdivision x" + std::to_string(opt.subdivide)
                                     : std::string())
+              << (opt.open ? "; closed meshes opened by removing the star of their first vertex"
+                           : std::string())
               << "\n\n";
     print_markdown_header();
   }
@@ -963,7 +962,7 @@ int main(int argc, char** argv) {
   for (const std::string& path : opt.meshes) {
     Mesh mesh;
     std::string error;
-    if (!load_mesh(path, opt.subdivide, mesh, error)) {
+    if (!load_mesh(path, opt, mesh, error)) {
       std::cerr << "compare: " << path << ": " << error << "\n";
       exit_status = 1;
       continue;
