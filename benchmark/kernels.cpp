@@ -162,6 +162,7 @@ BENCHMARK(BM_laplacian_assembly)->DenseRange(0, 3)->Unit(benchmark::kMillisecond
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Simplicial_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 #ifdef ICM_HAS_CHOLMOD
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Cholmod_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Nested_dissection_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 #endif
 BENCHMARK(BM_newton_step)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_free_boundary_optimum)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

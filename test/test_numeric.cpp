@@ -343,15 +343,27 @@ TEST(OptimalMetric, CholmodAndSimplicialSolversAgree)
   const Mesh_index index = index_file("three_peaks.off");
   const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
   const std::vector<char> singular = ICM::boundary_singular_set(index);
-  Eigen::VectorXd u_simplicial, u_cholmod;
+  Eigen::VectorXd u_simplicial, u_cholmod, u_nested;
   const ICM::Newton_report a =
     ICM::free_boundary_optimum<ICM::Simplicial_solver>(index, metric, singular, u_simplicial);
   const ICM::Newton_report b =
     ICM::free_boundary_optimum<ICM::Cholmod_solver>(index, metric, singular, u_cholmod);
+  const ICM::Newton_report c =
+    ICM::free_boundary_optimum<ICM::Nested_dissection_solver>(index, metric, singular, u_nested);
   ASSERT_TRUE(a.converged) << a.message;
   ASSERT_TRUE(b.converged) << b.message;
+  ASSERT_TRUE(c.converged) << c.message;
   EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.iterations, c.iterations);
   EXPECT_LT((u_simplicial - u_cholmod).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((u_simplicial - u_nested).cwiseAbs().maxCoeff(), 1e-9);
+
+  // The default picks by size: three_peaks is far below the nested dissection threshold.
+  ICM::Dynamic_laplacian<ICM::Size_adaptive_solver> small(index, interior_of(index));
+  EXPECT_LT(small.size(), ICM::Size_adaptive_solver::nested_dissection_min_unknowns);
+  ICM::Size_adaptive_solver solver;
+  solver.analyzePattern(small.matrix());
+  EXPECT_FALSE(solver.uses_nested_dissection());
 }
 #endif
 
@@ -436,6 +448,23 @@ TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
   const ICM::Layout_check b = ICM::check_layout(index, lengths, harmonic);
   EXPECT_EQ(b.flipped_faces, 0);
   EXPECT_LT(b.max_relative_length_error, 1e-8);
+
+  // That layout refined Newton's last factorization; a fresh factorization of the final
+  // Laplacian gives the same coordinates.
+  ASSERT_TRUE(solver.laplacian().has_factorization());
+  ICM::Dynamic_laplacian<> fresh(index, interior_of(index));
+  ASSERT_FALSE(fresh.has_factorization());
+  std::vector<ICM::Uv> direct;
+  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, fresh, direct, message)) << message;
+  ASSERT_TRUE(fresh.has_factorization());
+  double largest_difference = 0, extent = 0;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    for(int c = 0; c < 2; ++c)
+    {
+      largest_difference = std::max(largest_difference, std::abs(direct[v][c] - harmonic[v][c]));
+      extent = std::max(extent, std::abs(direct[v][c]));
+    }
+  EXPECT_LT(largest_difference, 1e-12 * extent);
 }
 
 TEST(Layout, EquilateralGridLaysOutAsItself)

@@ -25,16 +25,76 @@ namespace ICM {
 
 using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-/// Eigen's simplicial LDL^T with AMD ordering: always available, and the default. Measured
-/// with benchmark/kernels (numeric factorization of the interior Laplacian, 2 cores) it
-/// beats CHOLMOD's supernodal LL^T at every size up to 235k faces: 0.40 vs 2.1 ms at
-/// 3.7k faces, 4.7 vs 18 ms at 15k, 43 vs 101 ms at 59k, 0.48 vs 0.78 s at 235k, because
-/// mesh Laplacians have small supernodes.
+/// Eigen's simplicial LDL^T with AMD ordering: always available, and the fastest choice for
+/// small and medium meshes (benchmark/kernels, one thread: 0.40 ms at 3.7k faces, 43 ms at
+/// 59k, 0.48 s at 235k) because mesh Laplacians have small supernodes.
 using Simplicial_solver = Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
-using Default_sparse_solver = Simplicial_solver;
+
 #ifdef ICM_HAS_CHOLMOD
-/// CHOLMOD's supernodal LL^T (SuiteSparse), for users who prefer it or have larger meshes.
+/// CHOLMOD's supernodal LL^T with its default ordering (SuiteSparse).
 using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Lower>;
+
+/// CHOLMOD's simplicial LDL^T after a nested dissection ordering (NESDIS). AMD's fill grows
+/// badly on large planar-like graphs: on lion-head refined to 1.07M faces one numeric
+/// factorization takes 15.5 s with AMD and 2.7 s after nested dissection, whose analysis
+/// (2.8 s, done once) only pays off from about 10^5 unknowns (measured, one thread).
+class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Lower>
+{
+public:
+  Nested_dissection_solver()
+  {
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_NESDIS;
+    setMode(Eigen::CholmodLDLt);
+  }
+};
+
+/// The default when SuiteSparse is present: `Simplicial_solver` below
+/// `nested_dissection_min_unknowns`, `Nested_dissection_solver` from there on (one
+/// analysis and six factorizations, the cost of a parameterization: 0.41 against 0.59 s at
+/// 33k unknowns, 4.5 against 2.8 s at 133k, 94 against 19 s at 533k).
+class Size_adaptive_solver
+{
+public:
+  static constexpr Eigen::Index nested_dissection_min_unknowns = 75000;
+
+  void analyzePattern(const Sparse_matrix& matrix)
+  {
+    nested_ = matrix.rows() >= nested_dissection_min_unknowns;
+    if(nested_)
+      nested_dissection_.analyzePattern(matrix);
+    else
+      simplicial_.analyzePattern(matrix);
+  }
+  void factorize(const Sparse_matrix& matrix)
+  {
+    if(nested_)
+      nested_dissection_.factorize(matrix);
+    else
+      simplicial_.factorize(matrix);
+  }
+  Eigen::ComputationInfo info() const
+  {
+    return nested_ ? nested_dissection_.info() : simplicial_.info();
+  }
+  template <class Rhs>
+  typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
+  {
+    if(nested_)
+      return nested_dissection_.solve(b);
+    return simplicial_.solve(b);
+  }
+  /// Whether the last `analyzePattern` chose nested dissection.
+  bool uses_nested_dissection() const { return nested_; }
+
+private:
+  bool nested_ = false;
+  Simplicial_solver simplicial_;
+  Nested_dissection_solver nested_dissection_;
+};
+using Default_sparse_solver = Size_adaptive_solver;
+#else
+using Default_sparse_solver = Simplicial_solver;
 #endif
 
 /// Delta(u) restricted to a free vertex set: Delta_ii = sum_j w_ij over all neighbours,
@@ -87,14 +147,41 @@ public:
     if(size() == 0)
       return true;
     solver_.factorize(matrix_);
-    return solver_.info() == Eigen::Success;
+    factorized_ = solver_.info() == Eigen::Success;
+    return factorized_;
   }
 
-  /// Solves Delta_FF x = b for right-hand sides given per free unknown.
+  /// Whether a numeric factorization (of some earlier assembly) is available.
+  bool has_factorization() const { return factorized_; }
+
+  /// Solves Delta_FF x = b for right-hand sides given per free unknown, with the last
+  /// factorization.
   template <class Rhs>
   typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
   {
     return solver_.solve(b);
+  }
+
+  /// Solves with the matrix as assembled now, using the last factorization — of a nearby
+  /// assembly — as preconditioner of an iterative refinement. When every weight changed by
+  /// a relative epsilon since that factorization, the error contracts by epsilon per
+  /// refinement (a Laplacian with non-negative weights is then within (1 +- epsilon) of the
+  /// factorized one in the Loewner order). Returns false when `max_refinements` corrections
+  /// do not shrink below `tolerance` relative to x.
+  template <class Rhs>
+  bool solve_refined(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x,
+                     double tolerance = 1e-13, int max_refinements = 6) const
+  {
+    x = solver_.solve(b);
+    for(int refinement = 0; refinement < max_refinements; ++refinement)
+    {
+      const typename Rhs::PlainObject correction =
+        solver_.solve(b - matrix_.template selfadjointView<Eigen::Lower>() * x);
+      x += correction;
+      if(correction.norm() <= tolerance * x.norm())
+        return x.allFinite();
+    }
+    return false;
   }
 
 private:
@@ -142,6 +229,7 @@ private:
   std::vector<int> diagonal_slot_;
   std::vector<int> edge_slot_;
   SparseSolver solver_;
+  bool factorized_ = false;
 };
 
 } // namespace ICM

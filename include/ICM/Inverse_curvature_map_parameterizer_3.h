@@ -106,8 +106,9 @@ struct Parameterization_report
 /// `report()` on the object passed in describes the last run.
 ///
 /// \tparam TriangleMesh a model of `FaceGraph`
-/// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is Eigen's
-///         `SimplicialLDLT` (see `Default_sparse_solver`), `ICM::Cholmod_solver` is CHOLMOD's.
+/// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is `Default_sparse_solver`:
+///         Eigen's `SimplicialLDLT`, switching to CHOLMOD after nested dissection for large
+///         meshes when SuiteSparse is present (`Size_adaptive_solver`).
 template <class TriangleMesh, class SparseSolver = CGAL::Default>
 class Inverse_curvature_map_parameterizer_3
 {
