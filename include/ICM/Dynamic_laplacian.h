@@ -26,8 +26,8 @@ namespace ICM {
 using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 /// Eigen's simplicial LDL^T with AMD ordering: always available, and the fastest choice for
-/// small and medium meshes (benchmark/kernels, one thread: 0.40 ms at 3.7k faces, 43 ms at
-/// 59k, 0.48 s at 235k) because mesh Laplacians have small supernodes.
+/// small and medium meshes (benchmark/kernels: 0.40 ms at 3.7k faces, 43 ms at 59k, 0.48 s
+/// at 235k, ahead of CHOLMOD's supernodal LL^T) because mesh Laplacians have small supernodes.
 using Simplicial_solver = Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
 
 #ifdef ICM_HAS_CHOLMOD

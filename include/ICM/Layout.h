@@ -85,9 +85,9 @@ inline int central_face(const internal::Mesh_index& index)
 /// its edge (a, b) — in the face's orientation — is a + l_ac R(theta_a) (b - a)/|b - a|, so
 /// every face keeps the input orientation (counter-clockwise = positive area).
 ///
-/// `angles` are the metric's own per-face angles (`Curvature_map::face_angles`): recomputed
-/// from the lengths they lose the relative precision of the tiny angles of faces whose
-/// radii differ by e^30, and the unfolding then drifts.
+/// `angles` are the metric's own per-face angles (`Curvature_map::face_angles`), which keep
+/// full relative precision in faces whose radii differ by e^30; recomputed from the lengths,
+/// the tiny angles of such faces lose their digits.
 inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
                                              const std::vector<double>& lengths,
                                              const std::vector<Triangle_angles>& angles)
@@ -182,8 +182,8 @@ inline void layout_border(const internal::Mesh_index& index, const std::vector<d
 /// interior. `laplacian` must have the interior vertices as its free set; it is assembled
 /// here with the weights `w` of the final metric. When it still holds the factorization of
 /// Newton's last step — whose weights differ from the final ones by the size of that step —
-/// a few refinements solve the system at the cost of a few triangular solves (1M faces:
-/// 12 s for a new factorization); otherwise, or if refinement stalls, it is refactorized.
+/// a few refinements solve the system for the cost of a few triangular solves instead of a
+/// factorization; otherwise, or if refinement stalls, it is refactorized.
 template <class SparseSolver>
 bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double>& lengths,
                      const Eigen::VectorXd& k, const std::vector<double>& w,
