@@ -434,11 +434,6 @@ bool has_usable_uvs(SMP::Error_code code) {
   return code == SMP::OK || code == SMP::ERROR_NO_1_TO_1_MAPPING;
 }
 
-// The text of an Error_code (ICM's table: CGAL 5.5.1's get_error_message is off by one).
-std::string error_text(int code) {
-  return ICM::error_message(static_cast<SMP::Error_code>(code));
-}
-
 // ------------------------------------------------------------------------------------------
 // Running one method in a child process
 // ------------------------------------------------------------------------------------------
@@ -607,7 +602,7 @@ std::string status_of(const Child_outcome& o) {
   const Child_result& r = o.result;
   if (!r.exception.empty()) return "failed: exception: " + r.exception;
   if (r.code != SMP::OK) {
-    std::string s = "failed: " + error_text(r.code);
+    std::string s = std::string("failed: ") + ICM::error_message(static_cast<SMP::Error_code>(r.code));
     if (!r.message.empty()) s += "; " + r.message;
     return s;
   }
@@ -901,7 +896,7 @@ bool write_panels(const std::string& mesh_path, const Options& opt,
     const Run_result r = it->run(copy, bhd, uvmap);
     if (!has_usable_uvs(r.code)) {
       std::cerr << "compare: --svg-panels: " << name << " failed ("
-                << error_text(r.code)
+                << ICM::error_message(r.code)
                 << (r.message.empty() ? "" : "; " + r.message) << "), panel left out\n";
       continue;
     }

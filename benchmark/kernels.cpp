@@ -30,6 +30,7 @@ struct Fixture
   ICM::internal::Mesh_index index;
   ICM::Circle_packing_metric metric;
   std::vector<char> interior;
+  std::vector<double> initial_weights; ///< Laplacian weights at u0
 };
 
 const Fixture& fixture(int levels)
@@ -50,6 +51,9 @@ const Fixture& fixture(int levels)
     slot->metric = ICM::initial_circle_packing_metric(slot->index);
     for(char b : slot->index.is_boundary_vertex)
       slot->interior.push_back(!b);
+    ICM::Curvature_map<> curvature(slot->index, slot->metric);
+    Eigen::VectorXd k;
+    curvature.evaluate(slot->metric.u0, k, &slot->initial_weights);
   }
   return *slot;
 }
@@ -76,10 +80,7 @@ void BM_curvature_map(benchmark::State& state)
 void BM_laplacian_assembly(benchmark::State& state)
 {
   const Fixture& f = fixture(static_cast<int>(state.range(0)));
-  ICM::Curvature_map<> curvature(f.index, f.metric);
-  Eigen::VectorXd k;
-  std::vector<double> w;
-  curvature.evaluate(f.metric.u0, k, &w);
+  const std::vector<double>& w = f.initial_weights;
   ICM::Dynamic_laplacian<> laplacian(f.index, f.interior);
   for(auto _ : state)
   {
@@ -93,10 +94,7 @@ template <class Solver>
 void BM_numeric_factorization(benchmark::State& state)
 {
   const Fixture& f = fixture(static_cast<int>(state.range(0)));
-  ICM::Curvature_map<> curvature(f.index, f.metric);
-  Eigen::VectorXd k;
-  std::vector<double> w;
-  curvature.evaluate(f.metric.u0, k, &w);
+  const std::vector<double>& w = f.initial_weights;
   ICM::Dynamic_laplacian<Solver> laplacian(f.index, f.interior);
   laplacian.assemble(w);
   for(auto _ : state)
@@ -148,7 +146,7 @@ void BM_layout(benchmark::State& state)
     if(harmonic)
       ICM::layout_harmonic(f.index, lengths, k, w, solver.laplacian(), uv, message);
     else
-      uv = ICM::layout_by_propagation(f.index, lengths);
+      uv = ICM::layout_by_propagation(f.index, lengths, solver.curvature_map().face_angles());
     benchmark::DoNotOptimize(uv.data());
   }
   set_faces(state, f);

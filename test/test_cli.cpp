@@ -3,8 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -22,22 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
-
-std::string read_file(const fs::path& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-void write_file(const fs::path& path, const std::string& content)
-{
-  std::ofstream out(path, std::ios::binary);
-  out << content;
-  ASSERT_TRUE(out.good()) << path;
-}
+using icm_test::data_path;
+using icm_test::read_text;
+using icm_test::write_text;
 
 std::vector<std::string> lines_of(const std::string& text)
 {
@@ -66,22 +54,8 @@ std::string quote(const std::string& s)
 class Sandbox
 {
 public:
-  Sandbox()
-  {
-    static std::atomic<int> counter{0};
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    root_ = fs::path(testing::TempDir()) /
-            ("icm_cli_" + std::to_string(static_cast<long>(::getpid())) + "_" +
-             std::string(info ? info->name() : "x") + "_" + std::to_string(counter++));
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "work");
-  }
-  ~Sandbox()
-  {
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-  }
-  fs::path work() const { return root_ / "work"; }
+  Sandbox() : root_("icm_cli") { fs::create_directories(work()); }
+  fs::path work() const { return root_.path() / "work"; }
   fs::path file(const std::string& name) const { return work() / name; }
 
   /// Files in `work`, sorted.
@@ -103,7 +77,7 @@ public:
   /// Runs icm_param with `arguments` (already quoted) in `work`.
   Result run(const std::string& arguments) const
   {
-    const fs::path out = root_ / "stdout.txt", err = root_ / "stderr.txt";
+    const fs::path out = root_.path() / "stdout.txt", err = root_.path() / "stderr.txt";
     const std::string command = "cd " + quote(work().string()) + " && " + quote(ICM_PARAM_EXE) +
                                 " " + arguments + " >" + quote(out.string()) + " 2>" +
                                 quote(err.string());
@@ -114,13 +88,13 @@ public:
 #else
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 #endif
-    r.out = read_file(out);
-    r.err = read_file(err);
+    r.out = read_text(out);
+    r.err = read_text(err);
     return r;
   }
 
 private:
-  fs::path root_;
+  icm_test::Scratch_directory root_;
 };
 
 /// Checks a failed run: non-zero exit, nothing on stdout, exactly one line on stderr that
@@ -191,7 +165,7 @@ TEST(Cli, NefertitiWritesObjSvgAndJson)
             std::stod(json_value(json, "seconds_parameterize")));
 
   EXPECT_EQ(box.listing(), (std::vector<std::string>{"out.obj", "out.svg"}));
-  const std::vector<std::string> obj = lines_of(read_file(box.file("out.obj")));
+  const std::vector<std::string> obj = lines_of(read_text(box.file("out.obj")));
   const std::regex face(R"(f (\d+)/(\d+) (\d+)/(\d+) (\d+)/(\d+))");
   int v = 0, vt = 0, f = 0, bad_faces = 0, out_of_range = 0;
   for(const std::string& line : obj)
@@ -218,7 +192,7 @@ TEST(Cli, NefertitiWritesObjSvgAndJson)
   EXPECT_EQ(bad_faces, 0);
   EXPECT_EQ(out_of_range, 0);
 
-  const std::string svg = read_file(box.file("out.svg"));
+  const std::string svg = read_text(box.file("out.svg"));
   EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
 }
@@ -252,19 +226,19 @@ TEST(Cli, ExistingOutputIsKeptWhenTheRunFails)
 {
   Sandbox box;
   const std::string previous = "# the user's precious file\nv 1 2 3\n";
-  write_file(box.file("out.obj"), previous);
-  write_file(box.file("out.svg"), "<svg/>");
+  write_text(box.file("out.obj"), previous);
+  write_text(box.file("out.svg"), "<svg/>");
   const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg");
   expect_clean_failure(box, r, "not a disk", {"out.obj", "out.svg"});
-  EXPECT_EQ(read_file(box.file("out.obj")), previous);
-  EXPECT_EQ(read_file(box.file("out.svg")), "<svg/>");
+  EXPECT_EQ(read_text(box.file("out.obj")), previous);
+  EXPECT_EQ(read_text(box.file("out.svg")), "<svg/>");
 }
 
 TEST(Cli, NanCoordinate)
 {
   Sandbox box;
   // A small valid disk (two triangles) with one coordinate NaN.
-  write_file(box.file("nan.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+  write_text(box.file("nan.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   const Sandbox::Result r = box.run("nan.off -o out.obj");
   // Either the reader rejects the number or the tool's finiteness check does; both are one
   // line naming the problem file or the coordinate.
@@ -278,7 +252,7 @@ TEST(Cli, NanCoordinate)
 TEST(Cli, QuadFace)
 {
   Sandbox box;
-  write_file(box.file("quad.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  write_text(box.file("quad.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
   const Sandbox::Result r = box.run("quad.off -o out.obj");
   expect_clean_failure(box, r, "non-triangle", {"quad.off"});
 }
@@ -288,7 +262,7 @@ TEST(Cli, ZeroAreaFace)
   Sandbox box;
   // A valid disk (one border loop, genus 0) whose third face has three collinear corners:
   // it passes the tool's own checks and reaches the parameterizer, which refuses it.
-  write_file(box.file("flat.off"),
+  write_text(box.file("flat.off"),
              "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n");
   const Sandbox::Result r = box.run("flat.off -o out.obj");
   EXPECT_NE(r.exit_code, 128 + 6)

@@ -16,7 +16,8 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include "test_support.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -40,51 +41,9 @@ using Surface_mesh = CGAL::Surface_mesh<Point_3>;
 using Polyhedron = CGAL::Polyhedron_3<Kernel>;
 namespace fs = std::filesystem;
 
-// A fresh directory under the system temporary directory, removed with its content.
-class Temp_dir
-{
-public:
-  Temp_dir()
-  {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("icm_test_io_" + std::to_string(ICM::internal::current_process_id()) + "_" +
-             std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~Temp_dir()
-  {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::size_t number_of_entries() const
-  {
-    std::size_t n = 0;
-    for(auto it = fs::directory_iterator(path_); it != fs::directory_iterator(); ++it)
-      ++n;
-    return n;
-  }
-  const fs::path& path() const { return path_; }
-
-private:
-  fs::path path_;
-};
-
-std::string read_text(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_text(const std::string& path, const std::string& text)
-{
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
+using icm_test::read_text;
+using icm_test::write_text;
+using Temp_dir = icm_test::Scratch_directory;
 
 std::size_t count_occurrences(const std::string& text, const std::string& what)
 {
@@ -484,7 +443,7 @@ TEST(IoObj, RoundTripKeepsEveryDigitAndSeams)
       ++k;
     }
 
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("grid.obj");
   std::string error;
   ASSERT_TRUE(ICM::IO::write_uv_obj(path, m, error)) << error;
@@ -522,7 +481,7 @@ TEST(IoObj, StreamOverloadText)
 
 TEST(IoObj, MissingDirectoryFailsAndCreatesNothing)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const fs::path missing = dir.path() / "no_such_dir";
   const std::string path = (missing / "out.obj").string();
   std::string error;
@@ -536,7 +495,7 @@ TEST(IoObj, MissingDirectoryFailsAndCreatesNothing)
 
 TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("keep.obj");
   write_text(path, "original\n");
 
@@ -560,7 +519,7 @@ TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
 
 TEST(IoAtomicFile, FailingBodyKeepsOriginalAndLeavesNoTemporary)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("data.txt");
   write_text(path, "precious content\n");
 
@@ -605,7 +564,7 @@ TEST(IoAtomicFile, FailingBodyKeepsOriginalAndLeavesNoTemporary)
 
 TEST(IoAtomicFile, SuccessReplacesTheFile)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("data.txt");
   write_text(path, "old\n");
   std::string error = "stale";
@@ -623,7 +582,7 @@ TEST(IoAtomicFile, SuccessReplacesTheFile)
 
 TEST(IoAtomicFile, TargetIsADirectory)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   fs::create_directory(dir.path() / "sub");
   std::string error;
   EXPECT_FALSE(ICM::internal::write_file_atomically(
@@ -709,7 +668,7 @@ TEST(IoLogAreaRatios, DegenerateFacesAreClamped)
 
 TEST(IoSvg, OnePolygonPerFaceAndEscapedTitle)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("layout.svg");
   const ICM::IO::Uv_mesh m = grid_uv_mesh();
   ICM::IO::Svg_options opt;
@@ -733,7 +692,7 @@ TEST(IoSvg, OnePolygonPerFaceAndEscapedTitle)
 TEST(IoSvg, CoordinatesFitTheSquareWithYUp)
 {
   ICM::IO::Uv_mesh m = separate_triangles(1);  // uv (0,0), (1,0), (0,1)
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("t.svg");
   ICM::IO::Svg_options opt;
   opt.size = 100.;
@@ -752,7 +711,7 @@ TEST(IoSvg, FlippedFacesAreHighlighted)
   // Mirror face 2's UV triangle: it is now clockwise.
   for(int k = 0; k < 3; ++k)
     m.uvs[6 + k][1] = -m.uvs[6 + k][1];
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   std::string error;
   ASSERT_TRUE(ICM::IO::write_uv_svg(dir.file("a.svg"), m, error)) << error;
   std::string svg = read_text(dir.file("a.svg"));
@@ -772,7 +731,7 @@ TEST(IoSvg, FlippedFacesAreHighlighted)
 
 TEST(IoSvg, EdgesOmittedBeyondTheLimit)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   ICM::IO::Svg_options opt;
   opt.max_faces_with_edges = 4;
   std::string error;
@@ -790,7 +749,7 @@ TEST(IoSvg, PanelsSideBySideWithOneColourBar)
   doubled.uvs[1][0] += 1.;  // face 0 enlarged
   const std::vector<std::pair<std::string, ICM::IO::Uv_mesh> > panels = {
       {"ICM", grid_uv_mesh()}, {"LSCM", doubled}, {"ARAP", separate_triangles(2)}};
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   const std::string path = dir.file("cmp.svg");
   ICM::IO::Svg_options opt;
   opt.title = "three_peaks";
@@ -810,7 +769,7 @@ TEST(IoSvg, PanelsSideBySideWithOneColourBar)
 
 TEST(IoSvg, FailuresLeaveNothing)
 {
-  Temp_dir dir;
+  Temp_dir dir("icm_test_io");
   std::string error;
   const std::string missing = (dir.path() / "nope" / "x.svg").string();
   EXPECT_FALSE(ICM::IO::write_uv_svg(missing, grid_uv_mesh(), error));

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -27,7 +29,7 @@ using ICM::internal::Mesh_index;
 Mesh_index index_file(const std::string& name)
 {
   Mesh mesh;
-  const std::string path = std::string(ICM_TEST_DATA_DIR) + "/" + name;
+  const std::string path = icm_test::data_path(name);
   EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
   Mesh_index index;
   std::vector<Mesh::Vertex_index> vertices;
@@ -436,7 +438,8 @@ TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
   solver.curvature_map().evaluate(u, k, &w);
   const std::vector<double> lengths = solver.curvature_map().lengths();
 
-  const std::vector<ICM::Uv> propagated = ICM::layout_by_propagation(index, lengths);
+  const std::vector<ICM::Uv> propagated =
+    ICM::layout_by_propagation(index, lengths, solver.curvature_map().face_angles());
   const ICM::Layout_check a = ICM::check_layout(index, lengths, propagated);
   EXPECT_EQ(a.flipped_faces, 0);
   EXPECT_LT(a.max_relative_length_error, 1e-8);
@@ -479,7 +482,8 @@ TEST(Layout, EquilateralGridLaysOutAsItself)
   ASSERT_TRUE(report.converged);
   EXPECT_EQ(report.iterations, 0);
   ICM::Curvature_map<> curvature(grid, metric);
-  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(grid, curvature.compute_lengths(u));
+  const std::vector<double>& lengths = curvature.compute_lengths(u);
+  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(grid, lengths, curvature.face_angles());
   for(int i = 0; i < grid.number_of_vertices(); ++i)
     for(int j = i + 1; j < grid.number_of_vertices(); j += 5)
     {

@@ -20,6 +20,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -53,9 +55,9 @@ using Parameterizer = ICM::Inverse_curvature_map_parameterizer_3<Mesh>;
 
 const double nan_value = std::numeric_limits<double>::quiet_NaN();
 
-std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
-std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
-bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+using icm_test::data_path;
+using icm_test::shared_dir_exists;
+using icm_test::shared_path;
 
 template <class Mesh>
 void read_mesh(const std::string& path, Mesh& mesh)

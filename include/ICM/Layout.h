@@ -39,19 +39,6 @@ enum class Layout_method
   Harmonic
 };
 
-/// Per-face corner angles of the metric given by edge lengths.
-inline std::vector<Triangle_angles> metric_angles(const internal::Mesh_index& index,
-                                                  const std::vector<double>& lengths)
-{
-  std::vector<Triangle_angles> angles(index.number_of_faces());
-  for(int f = 0; f < index.number_of_faces(); ++f)
-  {
-    const auto& e = index.face_edges[f];
-    angles[f] = triangle_angles({lengths[e[0]], lengths[e[1]], lengths[e[2]]});
-  }
-  return angles;
-}
-
 /// The face farthest (in face hops) from the border, or face 0 on a closed mesh: unfolding
 /// from the middle keeps the face tree shallow.
 inline int central_face(const internal::Mesh_index& index)
@@ -139,13 +126,6 @@ inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
       }
   }
   return uv;
-}
-
-/// Propagation with the angles recomputed from the lengths, for metrics given only by them.
-inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
-                                             const std::vector<double>& lengths)
-{
-  return layout_by_propagation(index, lengths, metric_angles(index, lengths));
 }
 
 /// Walks the single border loop counter-clockwise with the metric's edge lengths, turning

@@ -1,0 +1,84 @@
+// What several test suites need: the bundled and shared mesh paths, whole-file text I/O, and
+// a scratch directory that disappears with its content.
+
+#ifndef ICM_TEST_SUPPORT_H
+#define ICM_TEST_SUPPORT_H
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#ifndef _WIN32
+#  include <unistd.h>
+#endif
+
+namespace icm_test {
+
+namespace fs = std::filesystem;
+
+/// A mesh of `examples/data`.
+inline std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
+/// A mesh of `../shared/data/meshes`; tests that need it skip when it is missing.
+inline std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
+inline bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+
+inline std::string read_text(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+inline void write_text(const fs::path& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << path;
+}
+
+/// A fresh directory under GoogleTest's temporary directory, named after the process and
+/// the running test, removed with its content.
+class Scratch_directory
+{
+public:
+  explicit Scratch_directory(const std::string& prefix)
+  {
+    static std::atomic<int> counter{0};
+    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::path(testing::TempDir()) /
+            (prefix + "_" + std::to_string(static_cast<long>(::getpid())) + "_" +
+             std::string(info ? info->name() : "x") + "_" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~Scratch_directory()
+  {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  Scratch_directory(const Scratch_directory&) = delete;
+  Scratch_directory& operator=(const Scratch_directory&) = delete;
+
+  const fs::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::size_t number_of_entries() const
+  {
+    std::size_t n = 0;
+    for(auto it = fs::directory_iterator(path_); it != fs::directory_iterator(); ++it)
+      ++n;
+    return n;
+  }
+
+private:
+  fs::path path_;
+};
+
+} // namespace icm_test
+
+#endif // ICM_TEST_SUPPORT_H
