@@ -2,7 +2,7 @@
 // optionally an SVG of the layout and a JSON line of figures.
 //
 //   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--layout auto|propagation|harmonic]
-//             [--radius mean|max]
+//             [--metric vertex-scaling|inversive-distance|circle-packing]
 //
 // On any failure it prints one line on stderr naming the reason, exits non-zero and writes
 // no file (outputs are written to a temporary file and renamed into place).
@@ -40,11 +40,13 @@ struct Arguments
   std::string input, output, svg;
   bool json = false;
   ICM::Layout_method layout = ICM::Layout_method::Automatic;
+  std::string metric = ICM::Default_metric::name;
 };
 
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
-  "[--layout auto|propagation|harmonic]\n";
+  "[--layout auto|propagation|harmonic] "
+  "[--metric vertex-scaling|inversive-distance|circle-packing]\n";
 
 int fail(const std::string& reason, int code = 1)
 {
@@ -92,6 +94,19 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
       else
       {
         error = "unknown layout '" + v + "' (auto, propagation or harmonic)";
+        return false;
+      }
+    }
+    else if(a == "--metric")
+    {
+      if(!value(args.metric))
+        return false;
+      if(args.metric != ICM::Vertex_scaling_metric::name &&
+         args.metric != ICM::Inversive_distance_metric::name &&
+         args.metric != ICM::Circle_packing_metric::name)
+      {
+        error = "unknown metric '" + args.metric +
+                "' (vertex-scaling, inversive-distance or circle-packing)";
         return false;
       }
     }
@@ -201,9 +216,18 @@ int main(int argc, char** argv)
   auto uvmap = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
   ICM::Parameterization_options options;
   options.layout = args.layout;
-  ICM::Inverse_curvature_map_parameterizer_3<Mesh> parameterizer(options);
-  const SMP::Error_code status = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
-  const ICM::Parameterization_report& report = parameterizer.report();
+  ICM::Parameterization_report report;
+  auto run = [&](auto metric) {
+    using Metric = decltype(metric);
+    ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric> parameterizer(options);
+    const SMP::Error_code code = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
+    report = parameterizer.report();
+    return code;
+  };
+  const SMP::Error_code status = args.metric == ICM::Circle_packing_metric::name ? run(ICM::Circle_packing_metric())
+                                 : args.metric == ICM::Inversive_distance_metric::name
+                                   ? run(ICM::Inversive_distance_metric())
+                                   : run(ICM::Vertex_scaling_metric());
   if(status != SMP::OK)
     return fail(std::string(ICM::error_message(status)) + ": " + report.message);
 
@@ -230,7 +254,9 @@ int main(int argc, char** argv)
               << ",\"newton_iterations\":" << report.newton_iterations
               << ",\"max_curvature_error\":" << json_number(report.max_curvature_error)
               << ",\"max_layout_length_error\":" << json_number(report.max_layout_length_error)
-              << ",\"clamped_edges\":" << report.clamped_edges
+              << ",\"metric\":" << json_string(report.metric)
+              << ",\"metric_summary\":" << json_string(report.metric_summary)
+              << ",\"metric_fallback\":" << json_string(report.fallback_reason)
               << ",\"flipped_faces\":" << measures.flipped_faces
               << ",\"log_area_distortion\":" << json_number(measures.log_area_distortion)
               << ",\"area_ratio_min\":" << json_number(measures.area_ratio_min)

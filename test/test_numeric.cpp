@@ -118,7 +118,7 @@ TEST(CirclePackingMetric, EquilateralGridIsReproducedExactly)
   const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
   for(int e = 0; e < grid.number_of_edges(); ++e)
   {
-    EXPECT_NEAR(metric.cos_phi[e], 1.0, 1e-12); // tangent circles
+    EXPECT_NEAR(metric.inversive_distance[e], 1.0, 1e-12); // tangent circles
     EXPECT_NEAR(lengths[e], 1.0, 1e-12);
   }
 }
@@ -155,7 +155,7 @@ TEST(CirclePackingMetric, AnglesStayInTheRangeThatKeepsTrianglesValid)
   for(ICM::Initial_radius rule : {ICM::Initial_radius::Mean_corner, ICM::Initial_radius::Max_corner})
   {
     const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index, rule);
-    for(double c : metric.cos_phi)
+    for(double c : metric.inversive_distance)
     {
       EXPECT_GE(c, 0.0);
       EXPECT_LE(c, 1.0);

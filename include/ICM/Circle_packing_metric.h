@@ -1,119 +1,65 @@
-// Step 1: the circle packing metric (paper Definition 2.1 and Algorithm 2).
+// Step 1: the circle packing metric (paper Definition 2.1 and Algorithm 2), a model of the
+// `Metric` concept (doc/concepts.md).
 //
 // A vertex carries a circle of radius gamma_i = exp(u_i), an edge the intersection angle
 // phi_ij in [0, pi/2] of the circles at its ends; the edge length follows from the law of
 // cosines. Keeping phi fixed and varying u moves within one conformal class, and for
 // phi <= pi/2 every u gives valid triangles (Thurston), so Newton never leaves the domain.
+// The price: Algorithm 2 clamps the angles, so at u0 the packing is not the mesh, and its
+// conformal class is not the mesh's (see Inversive_distance_metric.h, Vertex_scaling_metric.h).
 
 #ifndef ICM_CIRCLE_PACKING_METRIC_H
 #define ICM_CIRCLE_PACKING_METRIC_H
 
+#include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
-#include <ICM/internal/Triangle_geometry.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
+#include <string>
 #include <vector>
 
 namespace ICM {
 
-/// Corner angles of one face of a metric, and the Jacobian entries of its three edges.
-struct Face_geometry
-{
-  Triangle_angles angles;
-  /// weight[c] = d theta_a / d u_b = d theta_b / d u_a for the edge ab opposite corner c.
-  std::array<double, 3> weight;
-};
-
-/// The conformal class of a circle packing: one intersection angle per edge, and the log
-/// radii `u0` of the initial packing, against which every energy is measured.
-class Circle_packing_metric
+/// The conformal class of a circle packing: one intersection angle per edge
+/// (`inversive_distance` = cos phi, in [0, 1]), and the log radii `u0` of the initial
+/// packing, against which every energy is measured.
+class Circle_packing_metric : public internal::Circle_metric
 {
 public:
-  Eigen::VectorXd u0;                   ///< log radii of the initial packing (Algorithm 2)
-  std::vector<double> cos_phi;          ///< per edge, cos of the intersection angle, in [0, 1]
-  std::vector<double> one_minus_cos_phi; ///< per edge, 1 - cos phi = 2 sin^2(phi / 2), exact near 0
+  static constexpr const char* name = "circle-packing";
+
   int clamped_edges = 0;                ///< edges whose angle was clamped to pi/2 (obtuse overlap)
   int fallback_radii = 0;               ///< vertices whose corner radii were all non-positive
   int relaxed_cycles = 0;               ///< short edge cycles whose angles were reduced
 
+  Circle_packing_metric() = default;
+  /// Algorithm 2 on `index` (see `initial_circle_packing_metric`).
+  explicit Circle_packing_metric(const internal::Mesh_index& index,
+                                 Initial_radius rule = Initial_radius::Mean_corner);
+
   /// Sets the intersection angles (radians, in [0, pi/2]) of every edge.
   void set_intersection_angles(const std::vector<double>& phi)
   {
-    cos_phi.resize(phi.size());
-    one_minus_cos_phi.resize(phi.size());
+    inversive_distance.resize(phi.size());
+    one_minus_inversive_distance.resize(phi.size());
     for(std::size_t e = 0; e < phi.size(); ++e)
     {
       const double half_sine = std::sin(0.5 * phi[e]);
-      cos_phi[e] = std::cos(phi[e]);
-      one_minus_cos_phi[e] = 2.0 * half_sine * half_sine;
+      inversive_distance[e] = std::cos(phi[e]);
+      one_minus_inversive_distance[e] = 2.0 * half_sine * half_sine;
     }
   }
 
-  /// Length of edge `e` for the radii `gi`, `gj` (= exp(u)) of its endpoints.
-  double length(int e, double gi, double gj) const
+  /// What the parameterizer reports of this metric.
+  std::string summary() const
   {
-    return std::sqrt(gi * gi + gj * gj + 2.0 * gi * gj * cos_phi[e]);
+    return std::to_string(clamped_edges) + " edge angles clamped to pi/2, " +
+           std::to_string(relaxed_cycles) + " short cycles relaxed";
   }
-
-  /// Angles and Jacobian entries of a face with edges `e[c]` (opposite corner c) of lengths
-  /// `l[c]`, and corner radii `g[c]`.
-  ///
-  /// Newton has to reach conformal factors that differ by e^30 inside one face (a nearly
-  /// closed surface squeezed into its hole). There the side lengths are dominated by the big
-  /// circles and every textbook formula cancels: the excess s - l_c is computed as a sum of
-  /// non-negative parts instead (possible because cos phi >= 0), and the edge weight as
-  /// h / l, with h the distance of the face's power centre from the edge, measured from the
-  /// edge's smaller circle, where it involves no cancellation either.
-  Face_geometry face_geometry(const std::array<int, 3>& e, const std::array<double, 3>& g,
-                              const std::array<double, 3>& l) const
-  {
-    std::array<double, 3> excess;
-    for(int c = 0; c < 3; ++c)
-    {
-      const int n = (c + 1) % 3, p = (c + 2) % 3; // side l[p] joins c and n, l[n] joins c and p
-      const double beyond_n = g[c] * (g[c] + 2.0 * g[n] * cos_phi[e[p]]) / (l[p] + g[n]);
-      const double beyond_p = g[c] * (g[c] + 2.0 * g[p] * cos_phi[e[n]]) / (l[n] + g[p]);
-      const double overlap = 2.0 * g[n] * g[p] * one_minus_cos_phi[e[c]] / (g[n] + g[p] + l[c]);
-      excess[c] = 0.5 * (beyond_n + beyond_p + overlap);
-    }
-    Face_geometry face;
-    face.angles = triangle_angles_from_excesses(excess);
-    for(int c = 0; c < 3; ++c)
-    {
-      const int a = (c + 1) % 3, b = (c + 2) % 3;
-      const int p = g[a] <= g[b] ? a : b, q = a + b - p; // p: the smaller circle of edge pq
-      // The radical axis of pq crosses side pq at distance along_pq = g_p - inside_pq from p.
-      const double cos_pq = cos_phi[e[c]], cos_pr = cos_phi[e[q]];
-      const double inside_pq = g[p] * g[q] * g[q] * one_minus_cos_phi[e[c]] * (1.0 + cos_pq) /
-                               (l[c] * (l[c] + g[p] + g[q] * cos_pq));
-      const double inside_pr = g[p] * g[c] * g[c] * one_minus_cos_phi[e[q]] * (1.0 + cos_pr) /
-                               (l[q] * (l[q] + g[p] + g[c] * cos_pr));
-      const double along_pq = g[p] * (g[p] + g[q] * cos_pq) / l[c];
-      // h = (along_pr - along_pq cos theta_p) / sin theta_p, with sin theta_p = 2 A / (l_pq l_pr)
-      // and the difference regrouped so that thin faces and tangent circles do not cancel.
-      const double h_sin = (inside_pq - inside_pr) + along_pq * face.angles.one_minus_cosine[p];
-      face.weight[c] = h_sin * l[q] / (2.0 * face.angles.area);
-    }
-    return face;
-  }
-};
-
-/// How Algorithm 2 turns the corner radii (l_ki + l_ij - l_jk)/2 of a vertex into its radius.
-enum class Initial_radius
-{
-  /// Their mean (default). The corner radii of an edge inside one face sum to its length,
-  /// so the mean keeps neighbouring circles close to tangent-or-orthogonal: on the horse
-  /// 9 034 of 60 333 angles need clamping to pi/2, against 41 912 with the maximum, and the
-  /// packing stays close to the Euclidean metric (mean |log l/l_mesh| 0.12 against 0.24).
-  Mean_corner,
-  /// Their maximum, the paper's choice. Circles overlap heavily on irregular meshes; most
-  /// angles are clamped and some vertex sets can then not be flattened at all (horse).
-  Max_corner
 };
 
 /// Thurston's condition, in the form that matters for intersection angles in [0, pi/2]: the
@@ -214,74 +160,38 @@ inline int keep_short_cycles_flattenable(const internal::Mesh_index& index,
 }
 
 /// Algorithm 2: corner radii (l_ki + l_ij - l_jk)/2, one radius per vertex from its corners
-/// (see `Initial_radius`), and the intersection angle that reproduces each Euclidean edge
-/// length, clamped to [0, pi/2]: disjoint circles become tangent (the edge shortens), heavy
-/// overlap becomes orthogonal (the edge lengthens). Short cycles whose inside could not be
-/// made flat are then relaxed (`keep_short_cycles_flattenable`).
-///
-/// A vertex whose corner values are all non-positive (only possible on numerically
-/// degenerate faces) gets half its shortest incident edge; it is counted in
-/// `fallback_radii`.
-inline Circle_packing_metric initial_circle_packing_metric(
-  const internal::Mesh_index& index, Initial_radius rule = Initial_radius::Mean_corner)
+/// (see `Initial_radius`; the mean by default, where the paper takes the maximum), and the
+/// intersection angle that reproduces each Euclidean edge length, clamped to [0, pi/2]:
+/// disjoint circles become tangent (the edge shortens), heavy overlap becomes orthogonal (the
+/// edge lengthens). Short cycles whose inside could not be made flat are then relaxed
+/// (`keep_short_cycles_flattenable`).
+inline Circle_packing_metric::Circle_packing_metric(const internal::Mesh_index& index,
+                                                    Initial_radius rule)
 {
-  const int nv = index.number_of_vertices();
-  const int ne = index.number_of_edges();
-  std::vector<double> euclidean(ne);
-  for(int e = 0; e < ne; ++e)
-    euclidean[e] = std::sqrt(
-      internal::squared_distance(index.points[index.edges[e][0]], index.points[index.edges[e][1]]));
+  const std::vector<double> euclidean = internal::euclidean_edge_lengths(index);
+  const std::vector<double> radius =
+    internal::vertex_radii_from_corners(index, euclidean, rule, fallback_radii);
+  u0 = Eigen::Map<const Eigen::VectorXd>(radius.data(), radius.size()).array().log();
 
-  std::vector<int> degree(nv, 0);
-  for(const auto& f : index.faces)
-    for(int v : f)
-      ++degree[v];
-  std::vector<double> radius(nv, rule == Initial_radius::Max_corner
-                                   ? -std::numeric_limits<double>::infinity()
-                                   : 0.0);
-  for(int f = 0; f < index.number_of_faces(); ++f)
-    for(int c = 0; c < 3; ++c)
-    {
-      const double opposite = euclidean[index.face_edges[f][c]];
-      const double next = euclidean[index.face_edges[f][(c + 1) % 3]];
-      const double prev = euclidean[index.face_edges[f][(c + 2) % 3]];
-      const double corner = 0.5 * (next + prev - opposite);
-      const int v = index.faces[f][c];
-      if(rule == Initial_radius::Max_corner)
-        radius[v] = std::max(radius[v], corner);
-      else
-        radius[v] += corner / degree[v];
-    }
-
-  Circle_packing_metric metric;
-  std::vector<double> shortest(nv, std::numeric_limits<double>::infinity());
-  for(int e = 0; e < ne; ++e)
-    for(int v : index.edges[e])
-      shortest[v] = std::min(shortest[v], euclidean[e]);
-  metric.u0.resize(nv);
-  for(int v = 0; v < nv; ++v)
-  {
-    if(!(radius[v] > 1e-12 * shortest[v]))
-    {
-      radius[v] = 0.5 * shortest[v];
-      ++metric.fallback_radii;
-    }
-    metric.u0[v] = std::log(radius[v]);
-  }
-
-  std::vector<double> phi(ne);
-  for(int e = 0; e < ne; ++e)
+  std::vector<double> phi(index.number_of_edges());
+  for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const double gi = radius[index.edges[e][0]], gj = radius[index.edges[e][1]];
     const double l = euclidean[e];
     const double c = (l * l - gi * gi - gj * gj) / (2.0 * gi * gj);
     if(c < 0.0)
-      ++metric.clamped_edges;
+      ++clamped_edges;
     phi[e] = std::acos(std::clamp(c, 0.0, 1.0));
   }
-  metric.relaxed_cycles = keep_short_cycles_flattenable(index, phi);
-  metric.set_intersection_angles(phi);
-  return metric;
+  relaxed_cycles = keep_short_cycles_flattenable(index, phi);
+  set_intersection_angles(phi);
+}
+
+/// Algorithm 2 (the paper's name for the constructor).
+inline Circle_packing_metric initial_circle_packing_metric(
+  const internal::Mesh_index& index, Initial_radius rule = Initial_radius::Mean_corner)
+{
+  return Circle_packing_metric(index, rule);
 }
 
 } // namespace ICM

@@ -2,14 +2,16 @@
 //
 // One pass over the faces gives edge lengths, corner angles, vertex curvatures and the edge
 // weights w_ij = d theta_i / d u_j summed over the faces at ij (the paper's h_ij / l_ij).
-// A metric policy provides `length(e, gi, gj)` and `face_geometry(edges, radii, lengths)`,
-// the face's angles and weights, because only the metric knows how to compute them without
-// cancellation when the radii of one face differ by many orders of magnitude.
+// A metric (the `Metric` concept, doc/concepts.md) provides `length(e, gi, gj)` and
+// `face_geometry(edges, radii, lengths)`, the face's angles, weights and validity, because
+// only the metric knows how to compute them without cancellation when the radii of one face
+// differ by many orders of magnitude.
 
 #ifndef ICM_CURVATURE_MAP_H
 #define ICM_CURVATURE_MAP_H
 
 #include <ICM/Circle_packing_metric.h>
+#include <ICM/internal/Triangle_geometry.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -47,8 +49,11 @@ public:
 
   /// Curvature k at `u`: 2 pi - angle sum inside, pi - angle sum on the border.
   /// When `weights` is given, also the per-edge Laplacian weights w_e (size #edges).
-  void evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& k, std::vector<double>* weights = nullptr)
+  /// Returns the number of faces whose lengths at `u` are not a triangle (always 0 for the
+  /// circle packing); k is then meaningless.
+  int evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& k, std::vector<double>* weights = nullptr)
   {
+    int invalid_faces = 0;
     compute_lengths(u);
     const int nv = index_.number_of_vertices();
     k.resize(nv);
@@ -61,12 +66,14 @@ public:
     {
       const std::array<int, 3>& e = index_.face_edges[f];
       const Face_geometry face = face_geometry(f);
+      invalid_faces += !face.valid;
       for(int c = 0; c < 3; ++c)
         k[index_.faces[f][c]] -= face.angles.angle[c];
       if(weights)
         for(int c = 0; c < 3; ++c)
           (*weights)[e[c]] += face.weight[c];
     }
+    return invalid_faces;
   }
 
   /// Corner angles of every face at the u of the last `evaluate` or `compute_lengths`.

@@ -36,6 +36,11 @@ struct Newton_options
   /// of e^-40 and reaches them in 5-9 steps with this cap (17 and one failure uncapped, 44
   /// with a cap of 1); on disks it costs nothing (measured on the shared meshes).
   double max_step = 10.0;
+  /// A metric with a limited valid region (vertex scaling, inversive distance) gives up
+  /// after this many consecutive steps cut below 1/32 by faces that would stop being
+  /// triangles: the target is then beyond the region's edge, and Newton crawls along it
+  /// (horse: 100 steps of 1e-4 without converging). Converging runs end with full steps.
+  int max_blocked_steps = 4;
 };
 
 struct Newton_report
@@ -46,6 +51,8 @@ struct Newton_report
   std::vector<double> residual_history;
   std::vector<double> step_lengths;
   double seconds_curvature = 0, seconds_factorization = 0, seconds_solve = 0;
+  /// The line search stalled because every shorter step still made some face invalid.
+  bool left_valid_region = false;
   std::string message;
 
   double final_residual() const { return residual_history.empty() ? 0.0 : residual_history.back(); }
@@ -79,11 +86,18 @@ public:
     Newton_report report;
     const int n = laplacian_.size();
     Eigen::VectorXd residual(n), trial_residual(n), du(n), u_trial;
+    int blocked_steps = 0;
 
     Clock::time_point t = Clock::now();
-    curvature_.evaluate(u, k_, &w_);
+    const int invalid_at_start = curvature_.evaluate(u, k_, &w_);
     free_residual(k_target, k_, residual);
     report.seconds_curvature += seconds_since(t);
+    if(invalid_at_start > 0)
+    {
+      report.message = std::to_string(invalid_at_start) +
+                       " faces are not triangles at the starting metric";
+      return report;
+    }
     report.residual_history.push_back(max_norm(residual));
 
     while(report.residual_history.back() > options.tolerance)
@@ -120,23 +134,30 @@ public:
       const double norm = residual.norm();
       const double largest = du.size() ? du.cwiseAbs().maxCoeff() : 0.0;
       double alpha = largest > options.max_step ? options.max_step / largest : 1.0;
+      // A metric whose valid region is not all of u-space (vertex scaling, inversive
+      // distance) also steps back from any trial where a face stops being a triangle.
       int halvings = 0;
+      bool blocked = false;
       for(;; ++halvings)
       {
         u_trial = u;
         for(int i = 0; i < n; ++i)
           u_trial[laplacian_.vertex(i)] += alpha * du[i];
-        curvature_.evaluate(u_trial, k_trial_, &w_trial_);
+        const int invalid = curvature_.evaluate(u_trial, k_trial_, &w_trial_);
         free_residual(k_target, k_trial_, trial_residual);
-        const bool finite = trial_residual.allFinite();
+        blocked = blocked || invalid > 0;
+        const bool finite = invalid == 0 && trial_residual.allFinite();
         if(finite && (trial_residual.norm() < norm || trial_residual.dot(du) >= 0.0))
           break;
         if(halvings == options.max_line_search_steps)
         {
           report.seconds_curvature += seconds_since(t);
+          report.left_valid_region = invalid > 0;
           report.message = "the Newton line search stalled (curvature error " +
-                           std::to_string(report.residual_history.back()) +
-                           "): the target curvature may be outside the image of K";
+                           std::to_string(report.residual_history.back()) + "): " +
+                           (invalid > 0 ? "a face would stop being a triangle, the target is "
+                                          "outside the metric's valid region"
+                                        : "the target curvature may be outside the image of K");
           return report;
         }
         alpha *= 0.5;
@@ -149,6 +170,16 @@ public:
       ++report.iterations;
       report.step_lengths.push_back(alpha);
       report.residual_history.push_back(max_norm(residual));
+      blocked_steps = blocked && alpha < 1.0 / 32 ? blocked_steps + 1 : 0;
+      if(blocked_steps == options.max_blocked_steps && report.residual_history.back() > options.tolerance)
+      {
+        report.left_valid_region = true;
+        report.message = "Newton is blocked by faces that would stop being triangles (curvature error " +
+                         std::to_string(report.residual_history.back()) +
+                         " after " + std::to_string(report.iterations) +
+                         " steps): the target is outside the metric's valid region";
+        return report;
+      }
     }
     report.converged = true;
     return report;

@@ -9,6 +9,8 @@
 
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
+#include <ICM/Inversive_distance_metric.h>
+#include <ICM/Vertex_scaling_metric.h>
 #include <ICM/Dynamic_laplacian.h>
 #include <ICM/Inverse_curvature_map.h>
 #include <ICM/Layout.h>
@@ -23,9 +25,14 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace ICM {
+
+/// The metric of `Inverse_curvature_map_parameterizer_3` when none is named: the one whose
+/// maps came out most conformal with no flipped face on the shared meshes (doc/benchmarks.md).
+using Default_metric = Vertex_scaling_metric;
 
 /// How the optimal metric is computed.
 enum class Optimum_method
@@ -70,6 +77,9 @@ struct Parameterization_options
   /// A layout whose edge lengths differ from the metric's by more than this fails (relative,
   /// see `Layout_check::max_relative_length_error`).
   double max_layout_length_error = 1e-6;
+  /// When the requested metric cannot reach the optimum (a face would stop being a
+  /// triangle), retry with `Circle_packing_metric`, whose every u is valid.
+  bool fall_back_to_circle_packing = true;
   /// Called at the start of each stage with its name ("index", "metric", "optimum", "layout").
   std::function<void(const std::string&)> progress;
 };
@@ -82,8 +92,12 @@ struct Parameterization_report
     CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH;
   std::string message;           ///< empty on success, else the human reason
   int vertices = 0, faces = 0, edges = 0, boundary_loops = 0, genus = 0, euler_characteristic = 0;
-  int clamped_edges = 0;         ///< edges whose intersection angle was clamped to pi/2
-  int newton_iterations = 0;
+  std::string metric;            ///< the metric of the result ("vertex-scaling", ...)
+  std::string metric_summary;    ///< what that metric changed of the mesh, in words
+  /// Empty, or why the requested metric could not reach the optimum and the circle packing
+  /// was used instead ("vertex-scaling: the Newton line search stalled ...").
+  std::string fallback_reason;
+  int newton_iterations = 0;             ///< of the metric that succeeded (a fallback not counted)
   std::vector<double> residual_history;  ///< max |k| over interior vertices per iteration
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
   double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
@@ -99,21 +113,29 @@ struct Parameterization_report
 /// halfedge `bhd`; it must be a topological disk (one border, genus 0): a `CGAL::Seam_mesh`
 /// whose seams cut a surface into a disk qualifies. Every boundary vertex is singular (free
 /// boundary) and every interior vertex flat; the result is the minimum of the curvature
-/// entropy, laid out isometrically. All UVs are written and every vertex is marked
-/// parameterized.
+/// entropy in the conformal class of `Metric`, laid out isometrically. All UVs are written
+/// and every vertex is marked parameterized.
+///
+/// When the optimum cannot be reached in the class of `Metric` (vertex scaling or inversive
+/// distance: a face would stop being a triangle), the parameterizer falls back to the circle
+/// packing metric, whose every u is valid, and says so in `report().metric` (see
+/// `Parameterization_options::fall_back_to_circle_packing`).
 ///
 /// CGAL's `parameterize()` takes the parameterizer by value; copies share one report, so
 /// `report()` on the object passed in describes the last run.
 ///
 /// \tparam TriangleMesh a model of `FaceGraph`
+/// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is
+///         `Default_metric` (`Vertex_scaling_metric`, chosen by measurement: doc/benchmarks.md)
 /// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is `Default_sparse_solver`:
 ///         Eigen's `SimplicialLDLT`, switching to CHOLMOD after nested dissection for large
 ///         meshes when SuiteSparse is present (`Size_adaptive_solver`).
-template <class TriangleMesh, class SparseSolver = CGAL::Default>
+template <class TriangleMesh, class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default>
 class Inverse_curvature_map_parameterizer_3
 {
 public:
   using Error_code = CGAL::Surface_mesh_parameterization::Error_code;
+  using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
   using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
@@ -135,59 +157,110 @@ public:
                           VertexIndexMap /* vimap */, VertexParameterizedMap vpmap)
   {
     using namespace CGAL::Surface_mesh_parameterization;
-    using Clock = std::chrono::steady_clock;
-    const Clock::time_point start = Clock::now();
-    Clock::time_point t = start;
-    auto lap = [&t]() {
-      const Clock::time_point now = Clock::now();
-      const double s = std::chrono::duration<double>(now - t).count();
-      t = now;
-      return s;
-    };
-    Parameterization_report& report = *report_;
-    report = Parameterization_report();
-    auto fail = [&](Error_code code, const std::string& why) {
-      report.status = code;
-      report.message = why;
-      report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
-      return code;
-    };
+    Run run(*report_);
 
     // Step 0: index the component once.
     stage("index");
     if(bhd == boost::graph_traits<TriangleMesh>::null_halfedge())
-      return fail(ERROR_WRONG_PARAMETER, "no border halfedge given");
+      return run.fail(ERROR_WRONG_PARAMETER, "no border halfedge given");
     if(!is_border(bhd, mesh))
-      return fail(ERROR_WRONG_PARAMETER, "the halfedge given is not on a border");
+      return run.fail(ERROR_WRONG_PARAMETER, "the halfedge given is not on a border");
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
     const internal::Index_status indexed =
       internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh),
                            index, vertices);
-    report.vertices = index.number_of_vertices();
-    report.faces = index.number_of_faces();
-    report.edges = index.number_of_edges();
-    report.boundary_loops = index.number_of_boundary_loops();
-    report.euler_characteristic = index.euler_characteristic();
-    report.genus = index.genus();
-    report.seconds_index = lap();
+    run.report_topology(index);
+    run.report.seconds_index = run.lap();
     if(!indexed.ok())
-      return fail(indexed.code, indexed.message);
+      return run.fail(indexed.code, indexed.message);
     if(!index.is_disk())
-      return fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
+      return run.fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
 
-    // Step 1: the initial circle packing metric.
+    // Steps 1-7 in the class of `Metric`, then in the circle packing's if it cannot get there.
+    std::vector<Uv> uv;
+    Error_code status = optimum_and_layout<Metric>(index, run, uv);
+    if(status != OK && !std::is_same<Metric, Circle_packing_metric>::value &&
+       options_.fall_back_to_circle_packing)
+    {
+      run.report.fallback_reason = std::string(Metric::name) + ": " + run.report.message;
+      run.report.message.clear();
+      status = optimum_and_layout<Circle_packing_metric>(index, run, uv);
+    }
+    if(status != OK)
+      return run.fail(status, run.report.message);
+
+    using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+    {
+      put(uvmap, vertices[v], Uv_point(uv[v][0], uv[v][1]));
+      put(vpmap, vertices[v], true);
+    }
+    return run.succeed();
+  }
+
+private:
+  /// The clock and the report of one `parameterize()` call.
+  struct Run
+  {
+    using Clock = std::chrono::steady_clock;
+    Parameterization_report& report;
+    Clock::time_point start = Clock::now(), last = start;
+
+    explicit Run(Parameterization_report& r) : report(r) { report = Parameterization_report(); }
+
+    /// Seconds since the last lap.
+    double lap()
+    {
+      const Clock::time_point now = Clock::now();
+      const double s = std::chrono::duration<double>(now - last).count();
+      last = now;
+      return s;
+    }
+    Error_code fail(Error_code code, const std::string& why)
+    {
+      report.status = code;
+      report.message = why;
+      report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+      return code;
+    }
+    Error_code succeed()
+    {
+      report.status = CGAL::Surface_mesh_parameterization::OK;
+      report.message.clear();
+      report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+      return report.status;
+    }
+    void report_topology(const internal::Mesh_index& index)
+    {
+      report.vertices = index.number_of_vertices();
+      report.faces = index.number_of_faces();
+      report.edges = index.number_of_edges();
+      report.boundary_loops = index.number_of_boundary_loops();
+      report.euler_characteristic = index.euler_characteristic();
+      report.genus = index.genus();
+    }
+  };
+
+  /// Steps 1, 5 and 7 in the conformal class of `M`: its initial metric, the free-boundary
+  /// optimum (S = border, N = interior), and the checked isometric layout into `uv`. Sets the
+  /// report's message and returns the error code on failure.
+  template <class M>
+  Error_code optimum_and_layout(const internal::Mesh_index& index, Run& run, std::vector<Uv>& uv)
+  {
+    using namespace CGAL::Surface_mesh_parameterization;
+    Parameterization_report& report = run.report;
     stage("metric");
-    const Circle_packing_metric metric = initial_circle_packing_metric(index);
-    report.clamped_edges = metric.clamped_edges;
-    report.seconds_metric = lap();
+    const M metric(index);
+    report.metric = M::name;
+    report.metric_summary = metric.summary();
+    report.seconds_metric += run.lap();
 
-    // Step 5: the free-boundary optimum (S = border, N = interior).
     stage("optimum");
     std::vector<char> is_interior(index.number_of_vertices());
     for(int v = 0; v < index.number_of_vertices(); ++v)
       is_interior[v] = !index.is_boundary_vertex[v];
-    Inverse_curvature_map<Solver> solver(index, metric, is_interior);
+    Inverse_curvature_map<Solver, M> solver(index, metric, is_interior);
     Eigen::VectorXd u;
     if(options_.optimum == Optimum_method::Newton)
     {
@@ -195,8 +268,12 @@ public:
       report.newton_iterations = newton.iterations;
       report.residual_history = newton.residual_history;
       report.max_curvature_error = newton.final_residual();
+      report.seconds_optimum += run.lap();
       if(!newton.converged)
-        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, newton.message);
+      {
+        report.message = newton.message;
+        return ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
+      }
     }
     else
     {
@@ -204,29 +281,29 @@ public:
         free_boundary_curvature_diffusion(index, metric, boundary_singular_set(index), u,
                                           options_.diffusion);
       report.max_curvature_error = diffusion.final_residual;
+      report.seconds_optimum += run.lap();
       if(!diffusion.converged)
-        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, diffusion.message);
+      {
+        report.message = diffusion.message;
+        return ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
+      }
     }
-    report.seconds_optimum = lap();
 
-    // Step 7: isometric layout of the flat metric, then the checks every layout must pass.
     stage("layout");
     Eigen::VectorXd k;
     std::vector<double> w;
-    Curvature_map<Circle_packing_metric>& curvature = solver.curvature_map();
+    Curvature_map<M>& curvature = solver.curvature_map();
     curvature.evaluate(u, k, &w);
     const std::vector<double>& lengths = curvature.lengths();
     const bool harmonic =
       options_.layout == Layout_method::Harmonic ||
       (options_.layout == Layout_method::Automatic &&
        index.number_of_faces() >= options_.harmonic_layout_min_faces);
-    std::vector<Uv> uv;
     if(harmonic)
     {
       report.layout = "harmonic";
-      std::string why;
-      if(!layout_harmonic(index, lengths, k, w, solver.laplacian(), uv, why))
-        return fail(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, why);
+      if(!layout_harmonic(index, lengths, k, w, solver.laplacian(), uv, report.message))
+        return ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
     }
     else
     {
@@ -236,27 +313,21 @@ public:
     const Layout_check check = check_layout(index, lengths, uv);
     report.flipped_faces = check.flipped_faces;
     report.max_layout_length_error = check.max_relative_length_error;
-    report.seconds_layout = lap();
+    report.seconds_layout += run.lap();
     if(check.flipped_faces > 0)
-      return fail(ERROR_NO_1_TO_1_MAPPING,
-                  std::to_string(check.flipped_faces) + " faces are flipped in the layout");
-    if(!(check.max_relative_length_error <= options_.max_layout_length_error))
-      return fail(ERROR_NO_1_TO_1_MAPPING,
-                  "the layout does not reproduce the metric (relative edge length error " +
-                    std::to_string(check.max_relative_length_error) + ")");
-
-    using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
-    for(int v = 0; v < index.number_of_vertices(); ++v)
     {
-      put(uvmap, vertices[v], Uv_point(uv[v][0], uv[v][1]));
-      put(vpmap, vertices[v], true);
+      report.message = std::to_string(check.flipped_faces) + " faces are flipped in the layout";
+      return ERROR_NO_1_TO_1_MAPPING;
     }
-    report.status = OK;
-    report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+    if(!(check.max_relative_length_error <= options_.max_layout_length_error))
+    {
+      report.message = "the layout does not reproduce the metric (relative edge length error " +
+                       std::to_string(check.max_relative_length_error) + ")";
+      return ERROR_NO_1_TO_1_MAPPING;
+    }
     return OK;
   }
 
-private:
   void stage(const std::string& name) const
   {
     if(options_.progress)

@@ -4,7 +4,7 @@
 // l_c the side opposite corner c): Heron's area sqrt(s x0 x1 x2) and the half-angle formula
 // tan(theta_c / 2) = sqrt(x_{c+1} x_{c+2} / (s x_c)) involve no subtraction once the excesses
 // are known. Computing the excesses without cancellation needs to know where the lengths
-// come from; the circle packing metric does it from its radii.
+// come from, so each metric computes them itself (the circle metrics from their radii).
 
 #ifndef ICM_INTERNAL_TRIANGLE_GEOMETRY_H
 #define ICM_INTERNAL_TRIANGLE_GEOMETRY_H
@@ -22,6 +22,17 @@ struct Triangle_angles
   double area;
 };
 
+/// Corner angles of one face of a metric, and the Jacobian entries of its three edges.
+struct Face_geometry
+{
+  Triangle_angles angles;
+  /// weight[c] = d theta_a / d u_b = d theta_b / d u_a for the edge ab opposite corner c.
+  std::array<double, 3> weight;
+  /// False when the lengths violate the triangle inequality (or are not finite): angles and
+  /// weights are then meaningless, and Newton's line search must step back.
+  bool valid = true;
+};
+
 /// From the excesses x_c = s - l_c >= 0 (a zero excess is a flat corner of angle pi).
 inline Triangle_angles triangle_angles_from_excesses(const std::array<double, 3>& x)
 {
@@ -36,6 +47,12 @@ inline Triangle_angles triangle_angles_from_excesses(const std::array<double, 3>
     t.one_minus_cosine[c] = 2.0 * across / (along + across);
   }
   return t;
+}
+
+/// Whether excesses describe a real, non-degenerate triangle.
+inline bool is_valid_triangle(const std::array<double, 3>& x)
+{
+  return x[0] > 0 && x[1] > 0 && x[2] > 0 && std::isfinite(x[0] + x[1] + x[2]);
 }
 
 } // namespace ICM

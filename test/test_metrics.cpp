@@ -1,0 +1,226 @@
+// The `Metric` concept, checked for every model on the same meshes: at u0 the metric is what
+// the metric promises (the mesh itself for vertex scaling and inversive distance), the
+// Jacobian is symmetric with zero row sums and equals finite differences of K, Gauss-Bonnet
+// holds, Newton converges quadratically, and a target that would make a face invalid is
+// refused with a reason instead of a hang.
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Inversive_distance_metric.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <Eigen/Geometry>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using ICM::internal::Mesh_index;
+
+Mesh_index index_of(const std::string& path)
+{
+  Mesh mesh;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
+  Mesh_index index;
+  std::vector<Mesh::Vertex_index> vertices;
+  const ICM::internal::Index_status status =
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
+  EXPECT_TRUE(status.ok()) << status.message;
+  return index;
+}
+
+Eigen::VectorXd perturbed(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  Eigen::VectorXd u = u0;
+  for(int i = 0; i < u.size(); ++i)
+    u[i] += d(rng);
+  return u;
+}
+
+/// The dense Delta (nothing pinned) of the per-edge weights.
+Eigen::MatrixXd dense_laplacian(const Mesh_index& index, const std::vector<double>& w)
+{
+  const int n = index.number_of_vertices();
+  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int i = index.edges[e][0], j = index.edges[e][1];
+    delta(i, j) -= w[e];
+    delta(j, i) -= w[e];
+    delta(i, i) += w[e];
+    delta(j, j) += w[e];
+  }
+  return delta;
+}
+
+template <class Metric>
+class MetricConcept : public testing::Test
+{
+};
+using Metrics = testing::Types<ICM::Circle_packing_metric, ICM::Inversive_distance_metric,
+                               ICM::Vertex_scaling_metric>;
+class Metric_names
+{
+public:
+  template <class T>
+  static std::string GetName(int) { return T::name; }
+};
+TYPED_TEST_SUITE(MetricConcept, Metrics, Metric_names);
+
+TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences)
+{
+  for(const char* name : {"nefertiti.off", "three_peaks.off"})
+  {
+    const Mesh_index index = index_of(icm_test::data_path(name));
+    const TypeParam metric(index);
+    ICM::Curvature_map<TypeParam> curvature(index, metric);
+    // Small enough that every face of every metric stays a triangle (three_peaks has
+    // slivers that 0.05 already breaks).
+    const Eigen::VectorXd u = perturbed(metric.u0, 0.01, 11);
+    Eigen::VectorXd k;
+    std::vector<double> w;
+    ASSERT_EQ(curvature.evaluate(u, k, &w), 0) << name;
+    const Eigen::MatrixXd delta = dense_laplacian(index, w);
+    EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-10 * delta.cwiseAbs().maxCoeff());
+
+    const double h = 1e-6;
+    double worst = 0;
+    for(int j = 0; j < index.number_of_vertices(); j += 13)
+    {
+      Eigen::VectorXd up = u, down = u, kp, km;
+      up[j] += h;
+      down[j] -= h;
+      curvature.evaluate(up, kp);
+      curvature.evaluate(down, km);
+      const Eigen::VectorXd column = (kp - km) / (2 * h);
+      worst = std::max(worst, (column - delta.col(j)).cwiseAbs().maxCoeff() /
+                                delta.col(j).cwiseAbs().maxCoeff());
+    }
+    EXPECT_LT(worst, 1e-6) << name;
+    EXPECT_NEAR(ICM::gauss_bonnet_defect(index, k), 0.0, 1e-9) << name;
+  }
+}
+
+TYPED_TEST(MetricConcept, NewtonConvergesQuadraticallyToTheFreeBoundaryOptimum)
+{
+  const Mesh_index index = index_of(icm_test::data_path("mushroom.off"));
+  const TypeParam metric(index);
+  Eigen::VectorXd u;
+  ICM::Newton_options options;
+  options.tolerance = 1e-13;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u, options);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_LE(report.iterations, 8);
+  const std::vector<double>& r = report.residual_history;
+  int quadratic_steps = 0;
+  for(std::size_t i = 0; i + 1 < r.size(); ++i)
+    if(r[i] < 1e-2 && r[i + 1] > 1e-12)
+    {
+      EXPECT_LT(r[i + 1], 50.0 * r[i] * r[i]) << "step " << i;
+      ++quadratic_steps;
+    }
+  EXPECT_GE(quadratic_steps, 1);
+}
+
+// The metrics that are the mesh at u0.
+template <class Metric>
+class ExactMetric : public testing::Test
+{
+};
+using Exact_metrics = testing::Types<ICM::Inversive_distance_metric, ICM::Vertex_scaling_metric>;
+TYPED_TEST_SUITE(ExactMetric, Exact_metrics, Metric_names);
+
+TYPED_TEST(ExactMetric, ReproducesTheMeshAtU0)
+{
+  const Mesh_index index = index_of(icm_test::data_path("three_peaks.off"));
+  const TypeParam metric(index);
+  ICM::Curvature_map<TypeParam> curvature(index, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
+  const std::vector<double> mesh = ICM::internal::euclidean_edge_lengths(index);
+  double worst = 0;
+  for(int e = 0; e < index.number_of_edges(); ++e)
+    worst = std::max(worst, std::abs(lengths[e] / mesh[e] - 1.0));
+  EXPECT_LT(worst, 1e-12);
+  // And the curvature at u0 is the mesh's angle defect.
+  Eigen::VectorXd k;
+  ASSERT_EQ(curvature.evaluate(metric.u0, k), 0);
+  Eigen::VectorXd defect = Eigen::VectorXd::Zero(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    defect[v] = index.is_boundary_vertex[v] ? M_PI : 2 * M_PI;
+  for(const auto& f : index.faces)
+    for(int c = 0; c < 3; ++c)
+    {
+      const auto &p = index.points[f[c]], &a = index.points[f[(c + 1) % 3]], &b = index.points[f[(c + 2) % 3]];
+      const Eigen::Vector3d x(a[0] - p[0], a[1] - p[1], a[2] - p[2]), y(b[0] - p[0], b[1] - p[1], b[2] - p[2]);
+      defect[f[c]] -= std::atan2(x.cross(y).norm(), x.dot(y));
+    }
+  EXPECT_LT((k - defect).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+TYPED_TEST(ExactMetric, TargetOutsideTheValidRegionIsRefusedWithAReason)
+{
+  // Ask a small disk for curvature it can only reach by degenerating faces: all of the
+  // interior's 2 pi chi concentrated on one interior vertex, the border straight. In the
+  // circle packing every u is valid; here Newton has to stop at the region's edge and say so.
+  const Mesh_index index = index_of(icm_test::data_path("nefertiti.off"));
+  const TypeParam metric(index);
+  int apex = 0;
+  while(index.is_boundary_vertex[apex])
+    ++apex;
+  Eigen::VectorXd k_target = Eigen::VectorXd::Zero(index.number_of_vertices());
+  k_target[apex] = 2 * M_PI * index.euler_characteristic() - 1e-3;
+  int first_border = 0;
+  while(!index.is_boundary_vertex[first_border])
+    ++first_border;
+  k_target[first_border] = 1e-3;
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(index, metric, k_target, u);
+  EXPECT_FALSE(report.converged);
+  EXPECT_TRUE(report.left_valid_region) << report.message;
+  EXPECT_NE(report.message.find("valid region"), std::string::npos) << report.message;
+  EXPECT_LE(report.iterations, ICM::Newton_options().max_iterations);
+}
+
+TEST(VertexScalingMetric, CotangentWeightsOfARightTriangle)
+{
+  // Legs 3 and 4, hypotenuse 5, all factors 1: cot of the right angle is 0, of the others
+  // 3/4 and 4/3; the weight of each edge is half the cotangent of the opposite angle.
+  Mesh_index index;
+  index.points = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}};
+  index.faces = {{0, 1, 2}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  const ICM::Vertex_scaling_metric metric(index);
+  const ICM::Face_geometry face =
+    metric.face_geometry(index.face_edges[0], {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0});
+  EXPECT_TRUE(face.valid);
+  EXPECT_NEAR(face.angles.angle[0], M_PI / 2, 1e-15);
+  EXPECT_NEAR(face.weight[0], 0.0, 1e-15);
+  EXPECT_NEAR(face.weight[1], 0.5 * 3.0 / 4.0, 1e-15); // corner 1 at (3,0): tan = 4/3
+  EXPECT_NEAR(face.weight[2], 0.5 * 4.0 / 3.0, 1e-15); // corner 2 at (0,4): tan = 3/4
+  EXPECT_NEAR(face.angles.area, 6.0, 1e-14);
+  // A factor e^8 at vertex 1 scales its edges 01 and 12 by e^4: sides 3e^4, 5e^4 and 4,
+  // and 3e^4 + 4 < 5e^4, so the lengths no longer close a triangle.
+  const ICM::Face_geometry far =
+    metric.face_geometry(index.face_edges[0], {1.0, std::exp(8.0), 1.0}, {0.0, 0.0, 0.0});
+  EXPECT_FALSE(far.valid);
+}
+
+} // namespace
