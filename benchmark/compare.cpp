@@ -91,6 +91,7 @@ struct Run_result {
   double seconds = NaN;                  // wall time of the parameterize() call only
   std::string message;                   // extra failure reason (ICM's report)
   std::optional<int> newton_iterations;  // ICM only
+  std::string metric;                    // ICM only: the metric of the result (after a fallback)
 };
 
 struct Method {
@@ -128,6 +129,7 @@ Method icm_method(std::string name) {
             const ICM::Parameterization_report& report = p.report();
             r.newton_iterations = report.newton_iterations;
             r.message = report.message;
+            r.metric = report.metric;
             return r;
           }};
 }
@@ -136,6 +138,12 @@ Method icm_method(std::string name) {
 std::vector<Method> make_registry() {
   return {
       icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh>>("icm_free_boundary"),
+      icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, ICM::Vertex_scaling_metric>>(
+          "icm_vertex_scaling"),
+      icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, ICM::Inversive_distance_metric>>(
+          "icm_inversive_distance"),
+      icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, ICM::Circle_packing_metric>>(
+          "icm_circle_packing"),
       cgal_method<SMP::LSCM_parameterizer_3<Mesh>>("lscm"),
       cgal_method<SMP::ARAP_parameterizer_3<Mesh>>("arap"),
       cgal_method<SMP::Discrete_conformal_map_parameterizer_3<Mesh>>("dcm"),
@@ -311,6 +319,7 @@ struct Row {
   bool has_measures = false;
   Measures m;
   std::optional<int> newton_iterations;
+  std::string metric;
 };
 
 // What one child process sends back through its pipe: "key value" lines.
@@ -322,6 +331,7 @@ struct Child_result {
   bool has_measures = false;
   Measures m;
   std::optional<int> newton_iterations;
+  std::string metric;
   std::string message;
   std::string exception;
 };
@@ -345,6 +355,7 @@ std::string serialize(const Child_result& r) {
   out << "seconds " << fmt_g(r.seconds) << "\n";
   out << "rss " << fmt_g(r.peak_rss_mb) << "\n";
   if (r.newton_iterations) out << "newton " << *r.newton_iterations << "\n";
+  if (!r.metric.empty()) out << "metric " << one_line(r.metric) << "\n";
   if (r.has_measures) {
     const Measures& m = r.m;
     const std::pair<const char*, double> fields[] = {
@@ -388,6 +399,7 @@ Child_result deserialize(const std::string& text) {
   r.seconds = num("seconds");
   r.peak_rss_mb = num("rss");
   if (kv.count("newton")) r.newton_iterations = std::atoi(kv["newton"].c_str());
+  if (kv.count("metric")) r.metric = kv["metric"];
   r.has_measures = kv.count("measured") > 0;
   Measures& m = r.m;
   m.faces = num("m.faces");
@@ -465,6 +477,7 @@ void write_all(int fd, const std::string& s) {
     r.code = static_cast<int>(run.code);
     r.seconds = run.seconds;
     r.newton_iterations = run.newton_iterations;
+    r.metric = run.metric;
     r.message = run.message;
     if (measure && has_usable_uvs(run.code)) {
       r.m = to_measures(ICM::measure_distortion(mesh, uvmap));
@@ -627,6 +640,7 @@ Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row r
   row.has_measures = r.has_measures;
   row.m = r.m;
   row.newton_iterations = r.newton_iterations;
+  row.metric = r.metric;
   row.peak_rss_mb = r.peak_rss_mb;
   std::vector<double> times{r.seconds};
   if (row.status == "ok") {
@@ -774,6 +788,7 @@ void print_json(const Row& r) {
     << ", \"area_ratio_max\": " << (h ? json_num(m.area_ratio_max) : "null")
     << ", \"newton_iterations\": "
     << (r.newton_iterations ? std::to_string(*r.newton_iterations) : std::string("null"))
+    << ", \"metric\": " << (r.metric.empty() ? std::string("null") : "\"" + r.metric + "\"")
     << "}\n";
   std::cout << o.str() << std::flush;
 }
@@ -826,7 +841,9 @@ void print_markdown_row(const Row& r, bool first) {
   const bool h = r.has_measures;
   auto cell = [&](double x, int decimals) { return h ? fmt_fixed(x, decimals) : std::string(); };
   std::ostringstream o;
-  o << "| " << (first ? md_cell(model_label(r)) : "") << " | " << md_cell(r.method)
+  // An ICM row names the metric of its result: after a fallback it is not the requested one.
+  const std::string method = r.metric.empty() ? r.method : r.method + " (" + r.metric + ")";
+  o << "| " << (first ? md_cell(model_label(r)) : "") << " | " << md_cell(method)
     << " | " << cell(m.conformality, 5) << " | " << cell(m.angle_distortion, 5) << " | "
     << cell(m.l2_shear, 4) << " | " << cell(m.l2_stretch, 4) << " | "
     << cell(m.log_area_distortion, 5) << " | "
