@@ -1,8 +1,10 @@
-// icm_param: parameterize a mesh file with the inverse curvature map and write the UV'd OBJ,
-// optionally an SVG of the layout and a JSON line of figures.
+// icm_param: parameterize any triangle mesh file with the inverse curvature map (cones and
+// seams where its topology needs them, one chart per connected component) and write the UV'd
+// OBJ (a vt per corner side of every seam), optionally an SVG of the layout and a JSON line.
 //
-//   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--layout auto|propagation|harmonic]
+//   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json]
 //             [--metric vertex-scaling|inversive-distance|circle-packing]
+//             [--cones auto|N] [--cone VERTEX:DEGREES]...
 //
 // On any failure it prints one line on stderr naming the reason, exits non-zero and writes
 // no file (outputs are written to a temporary file and renamed into place).
@@ -12,6 +14,7 @@
 #include <ICM/IO/write_uv_obj.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -21,7 +24,12 @@
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <map>
+#include <utility>
+#include <vector>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -39,14 +47,15 @@ struct Arguments
 {
   std::string input, output, svg;
   bool json = false;
-  ICM::Layout_method layout = ICM::Layout_method::Automatic;
   std::string metric = ICM::Default_metric::name;
+  int max_cones = -1;                     // -1: automatic
+  std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
 };
 
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
-  "[--layout auto|propagation|harmonic] "
-  "[--metric vertex-scaling|inversive-distance|circle-packing]\n";
+  "[--metric vertex-scaling|inversive-distance|circle-packing] "
+  "[--cones auto|N] [--cone VERTEX:DEGREES]...\n";
 
 int fail(const std::string& reason, int code = 1)
 {
@@ -80,22 +89,39 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
     }
     else if(a == "--json")
       args.json = true;
-    else if(a == "--layout")
+    else if(a == "--cones")
     {
       std::string v;
       if(!value(v))
         return false;
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
       if(v == "auto")
-        args.layout = ICM::Layout_method::Automatic;
-      else if(v == "propagation")
-        args.layout = ICM::Layout_method::Propagation;
-      else if(v == "harmonic")
-        args.layout = ICM::Layout_method::Harmonic;
+        args.max_cones = -1;
+      else if(!v.empty() && *end == '\0' && n >= 0 && n <= 100000)
+        args.max_cones = static_cast<int>(n);
       else
       {
-        error = "unknown layout '" + v + "' (auto, propagation or harmonic)";
+        error = "--cones takes 'auto' or a count, not '" + v + "'";
         return false;
       }
+    }
+    else if(a == "--cone")
+    {
+      std::string v;
+      if(!value(v))
+        return false;
+      const std::size_t colon = v.find(':');
+      char *end_vertex = nullptr, *end_angle = nullptr;
+      const long vertex = colon == std::string::npos ? -1 : std::strtol(v.c_str(), &end_vertex, 10);
+      const double degrees = colon == std::string::npos ? 0 : std::strtod(v.c_str() + colon + 1, &end_angle);
+      if(colon == std::string::npos || end_vertex != v.c_str() + colon || vertex < 0 ||
+         *end_angle != '\0' || !(degrees > 0) || !std::isfinite(degrees))
+      {
+        error = "--cone takes VERTEX:DEGREES with a vertex index >= 0 and an angle > 0, not '" + v + "'";
+        return false;
+      }
+      args.cones.push_back({static_cast<int>(vertex), degrees});
     }
     else if(a == "--metric")
     {
@@ -130,26 +156,13 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
   return error.empty();
 }
 
-/// The reason the tool cannot take this mesh yet, or empty when it is a disk it can take.
-std::string check_input(Mesh& mesh)
+/// The reason the tool cannot take this mesh, or empty.
+std::string check_input(const Mesh& mesh)
 {
   if(faces(mesh).empty())
     return "the mesh has no faces";
   if(!CGAL::is_triangle_mesh(mesh))
     return "the mesh has non-triangle faces (triangulate it first)";
-  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:icm_cc").first;
-  const std::size_t components = PMP::connected_components(mesh, component);
-  if(components > 1)
-    return std::to_string(components) + " connected components: parameterize one at a time";
-  std::vector<Mesh::Halfedge_index> borders;
-  PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
-  const int loops = static_cast<int>(borders.size());
-  const int chi = static_cast<int>(num_vertices(mesh)) - static_cast<int>(num_edges(mesh)) +
-                  static_cast<int>(num_faces(mesh));
-  const int genus = (2 - chi - loops) / 2;
-  if(loops != 1 || genus != 0)
-    return std::to_string(loops) + " boundary loop" + (loops == 1 ? "" : "s") + ", genus " +
-           std::to_string(genus) + ": not a disk";
   return {};
 }
 
@@ -212,60 +225,91 @@ int main(int argc, char** argv)
   if(!unsupported.empty())
     return fail(unsupported);
 
-  const Mesh::Halfedge_index bhd = PMP::longest_border(mesh).first;
-  auto uvmap = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
-  ICM::Parameterization_options options;
-  options.layout = args.layout;
-  ICM::Parameterization_report report;
+  ICM::Surface_parameterization_options options;
+  if(args.max_cones >= 0)
+  {
+    options.automatic_cones = args.max_cones > 0;
+    options.cones.max_cones = args.max_cones;
+    options.initial_cones = std::min(options.initial_cones, args.max_cones);
+  }
+  std::map<Mesh::Vertex_index, double> cones;
+  for(const auto& [vertex, degrees] : args.cones)
+  {
+    if(static_cast<std::size_t>(vertex) >= num_vertices(mesh))
+      return fail("--cone " + std::to_string(vertex) + ": the mesh has " +
+                  std::to_string(num_vertices(mesh)) + " vertices");
+    cones[Mesh::Vertex_index(static_cast<Mesh::size_type>(vertex))] = 2 * M_PI - degrees * M_PI / 180;
+  }
+  auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
+  std::vector<Mesh::Edge_index> seams;
+  ICM::Surface_parameterization_report report;
   auto run = [&](auto metric) {
-    using Metric = decltype(metric);
-    ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric> parameterizer(options);
-    const SMP::Error_code code = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
-    report = parameterizer.report();
-    return code;
+    return ICM::parameterize<decltype(metric)>(mesh, uvmap, options, cones, &seams);
   };
-  const SMP::Error_code status = args.metric == ICM::Circle_packing_metric::name ? run(ICM::Circle_packing_metric())
-                                 : args.metric == ICM::Inversive_distance_metric::name
-                                   ? run(ICM::Inversive_distance_metric())
-                                   : run(ICM::Vertex_scaling_metric());
-  if(status != SMP::OK)
-    return fail(std::string(ICM::error_message(status)) + ": " + report.message);
+  report = args.metric == ICM::Circle_packing_metric::name      ? run(ICM::Circle_packing_metric())
+           : args.metric == ICM::Inversive_distance_metric::name ? run(ICM::Inversive_distance_metric())
+                                                                 : run(ICM::Vertex_scaling_metric());
+  if(report.status != SMP::OK)
+    return fail(std::string(ICM::error_message(report.status)) + ": " + report.message);
 
   t = Clock::now();
-  const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh(mesh, uvmap);
+  const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
   if(!ICM::IO::write_uv_obj(args.output, uv_mesh, error))
     return fail(error);
   if(!args.svg.empty())
   {
     ICM::IO::Svg_options svg_options;
-    svg_options.title = args.input.substr(args.input.find_last_of("/\\") + 1) + " — ICM free boundary";
+    svg_options.title = args.input.substr(args.input.find_last_of("/\\") + 1) + " — ICM";
     if(!ICM::IO::write_uv_svg(args.svg, uv_mesh, error, svg_options))
       return fail(error);
   }
   const double seconds_write = since(t);
-  const ICM::Distortion_measures measures = ICM::measure_distortion(mesh, uvmap);
+  const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);
+
+  // Totals over the charts, and the worst of each check.
+  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0;
+  double curvature_error = 0, length_error = 0, seam_error = 0;
+  std::string metrics, fallbacks;
+  for(const ICM::Chart_report& c : report.charts)
+  {
+    cone_count += static_cast<int>(c.cones.size());
+    genus += c.genus;
+    loops += c.boundary_loops;
+    newton = std::max(newton, c.newton_iterations);
+    overlaps += c.overlapping_border_edges;
+    curvature_error = std::max(curvature_error, c.max_curvature_error);
+    length_error = std::max(length_error, c.max_layout_length_error);
+    seam_error = std::max(seam_error, c.seam_length_error);
+    if(metrics.find(c.metric) == std::string::npos)
+      metrics += (metrics.empty() ? "" : ",") + c.metric;
+    if(!c.fallback_reason.empty() && fallbacks.empty())
+      fallbacks = c.fallback_reason;
+  }
 
   if(args.json)
   {
     std::cout << "{\"input\":" << json_string(args.input) << ",\"output\":" << json_string(args.output)
-              << ",\"vertices\":" << report.vertices << ",\"faces\":" << report.faces
-              << ",\"boundary_loops\":" << report.boundary_loops << ",\"genus\":" << report.genus
-              << ",\"layout\":" << json_string(report.layout)
-              << ",\"newton_iterations\":" << report.newton_iterations
-              << ",\"max_curvature_error\":" << json_number(report.max_curvature_error)
-              << ",\"max_layout_length_error\":" << json_number(report.max_layout_length_error)
-              << ",\"metric\":" << json_string(report.metric)
-              << ",\"metric_summary\":" << json_string(report.metric_summary)
-              << ",\"metric_fallback\":" << json_string(report.fallback_reason)
+              << ",\"vertices\":" << num_vertices(mesh) << ",\"faces\":" << num_faces(mesh)
+              << ",\"charts\":" << report.charts.size()
+              << ",\"boundary_loops\":" << loops << ",\"genus\":" << genus
+              << ",\"cones\":" << cone_count << ",\"seam_edges\":" << seams.size()
+              << ",\"layout\":\"propagation\""
+              << ",\"newton_iterations\":" << newton
+              << ",\"max_curvature_error\":" << json_number(curvature_error)
+              << ",\"max_layout_length_error\":" << json_number(length_error)
+              << ",\"seam_length_error\":" << json_number(seam_error)
+              << ",\"overlapping_border_edges\":" << overlaps
+              << ",\"metric\":" << json_string(metrics)
+              << ",\"metric_fallback\":" << json_string(fallbacks)
               << ",\"flipped_faces\":" << measures.flipped_faces
               << ",\"log_area_distortion\":" << json_number(measures.log_area_distortion)
               << ",\"area_ratio_min\":" << json_number(measures.area_ratio_min)
               << ",\"area_ratio_max\":" << json_number(measures.area_ratio_max)
               << ",\"qc_mean\":" << json_number(measures.qc_mean)
               << ",\"seconds_read\":" << json_number(seconds_read)
-              << ",\"seconds_index\":" << json_number(report.seconds_index)
-              << ",\"seconds_metric\":" << json_number(report.seconds_metric)
+              << ",\"seconds_cones\":" << json_number(report.seconds_cones)
               << ",\"seconds_optimum\":" << json_number(report.seconds_optimum)
+              << ",\"seconds_cut\":" << json_number(report.seconds_cut)
               << ",\"seconds_layout\":" << json_number(report.seconds_layout)
               << ",\"seconds_parameterize\":" << json_number(report.seconds_total)
               << ",\"seconds_write\":" << json_number(seconds_write)
@@ -273,9 +317,10 @@ int main(int argc, char** argv)
   }
   else
   {
-    std::cerr << args.input << ": " << report.vertices << " vertices, " << report.faces
-              << " faces, " << report.newton_iterations << " Newton iterations, max interior |k| "
-              << report.max_curvature_error << ", " << measures.flipped_faces
+    std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh)
+              << " faces, " << report.charts.size() << " chart(s), " << cone_count << " cones, "
+              << seams.size() << " seam edges, " << newton << " Newton iterations, max |k| "
+              << curvature_error << ", " << measures.flipped_faces
               << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
               << report.seconds_total << " s -> " << args.output << "\n";
   }

@@ -153,9 +153,8 @@ TEST(Cli, NefertitiWritesObjSvgAndJson)
   const std::string residual = json_value(json, "max_curvature_error");
   ASSERT_FALSE(residual.empty()) << json;
   EXPECT_LT(std::stod(residual), 1e-9);
-  for(const char* key : {"seconds_total", "seconds_read", "seconds_index", "seconds_metric",
-                         "seconds_optimum", "seconds_layout", "seconds_parameterize",
-                         "seconds_write"})
+  for(const char* key : {"seconds_total", "seconds_read", "seconds_cones", "seconds_optimum",
+                         "seconds_cut", "seconds_layout", "seconds_parameterize", "seconds_write"})
   {
     const std::string v = json_value(json, key);
     ASSERT_FALSE(v.empty()) << key << " missing in " << json;
@@ -207,12 +206,56 @@ TEST(Cli, WithoutJsonPrintsOneSummaryLineOnStderr)
   EXPECT_EQ(box.listing(), (std::vector<std::string>{"out.obj"}));
 }
 
-TEST(Cli, ClosedMeshIsNotADisk)
+TEST(Cli, ClosedMeshIsCutThroughCones)
+{
+  // A closed sphere: automatic cones, a seam tree through them, a vt per side of each seam.
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string json = lines_of(r.out).at(0);
+  EXPECT_EQ(json_value(json, "charts"), "1");
+  EXPECT_EQ(json_value(json, "genus"), "0");
+  EXPECT_EQ(json_value(json, "boundary_loops"), "0");
+  EXPECT_GE(std::stoi(json_value(json, "cones")), 2);
+  EXPECT_GT(std::stoi(json_value(json, "seam_edges")), 0);
+  EXPECT_EQ(json_value(json, "flipped_faces"), "0");
+  EXPECT_EQ(json_value(json, "overlapping_border_edges"), "0");
+  EXPECT_LT(std::stod(json_value(json, "seam_length_error")), 1e-9);
+  int v = 0, vt = 0;
+  for(const std::string& line : lines_of(read_text(box.file("out.obj"))))
+  {
+    v += line.rfind("v ", 0) == 0;
+    vt += line.rfind("vt ", 0) == 0;
+  }
+  EXPECT_EQ(v, 926);
+  // One vt per side of the seams: a vertex of degree d in the seam tree has d copies, and a
+  // tree of s edges has s + 1 vertices of total degree 2 s, so s - 1 vt more than vertices.
+  EXPECT_EQ(vt, v + std::stoi(json_value(json, "seam_edges")) - 1);
+}
+
+TEST(Cli, ClosedSphereWithoutConesIsRefused)
 {
   Sandbox box;
-  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg");
-  expect_clean_failure(box, r, "not a disk");
-  EXPECT_NE(r.err.find("0 boundary loops"), std::string::npos) << r.err;
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --cones 0");
+  expect_clean_failure(box, r, "needs at least two cones");
+}
+
+TEST(Cli, BadConeArgumentsAreRefused)
+{
+  Sandbox box;
+  for(const char* bad : {"--cone 5", "--cone 5:-90", "--cone x:90", "--cones many"})
+  {
+    const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find(bad[6] == 's' ? "--cones takes" : "VERTEX:DEGREES"), std::string::npos) << r.err;
+    EXPECT_TRUE(box.listing().empty()) << bad;
+  }
+  expect_clean_failure(box, box.run(quote(data_path("sphere966.off")) + " -o out.obj --cone 99999:90"), "926 vertices");
+  // A border vertex of a disk is singular already.
+  expect_clean_failure(box, box.run(quote(data_path("nefertiti.off")) + " -o out.obj --cone 0:90"), "boundary vertex");
+  // Every angle prescribed on a closed surface: the curvatures must sum to 4 pi.
+  expect_clean_failure(box, box.run(quote(data_path("sphere966.off")) + " -o out.obj --cone 0:90 --cone 500:90"),
+                       "Gauss-Bonnet");
 }
 
 TEST(Cli, MissingInputFile)
@@ -228,8 +271,8 @@ TEST(Cli, ExistingOutputIsKeptWhenTheRunFails)
   const std::string previous = "# the user's precious file\nv 1 2 3\n";
   write_text(box.file("out.obj"), previous);
   write_text(box.file("out.svg"), "<svg/>");
-  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg");
-  expect_clean_failure(box, r, "not a disk", {"out.obj", "out.svg"});
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --svg out.svg --cones 0");
+  expect_clean_failure(box, r, "needs at least two cones", {"out.obj", "out.svg"});
   EXPECT_EQ(read_text(box.file("out.obj")), previous);
   EXPECT_EQ(read_text(box.file("out.svg")), "<svg/>");
 }

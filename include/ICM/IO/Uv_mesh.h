@@ -226,6 +226,52 @@ Uv_mesh make_uv_mesh(const TriangleMesh& mesh, VertexUVMap uvmap)
   return out;
 }
 
+/// Copies a mesh with one UV per corner (a halfedge map: the UV of `target(h)` in `face(h)`,
+/// as `ICM::parameterize` writes it) into a `Uv_mesh`. Corners of one vertex with the same UV
+/// share one `vt`, so a vertex gets one UV per side of the seams through it.
+template <class TriangleMesh, class HalfedgeUVMap>
+Uv_mesh make_uv_mesh_from_corners(const TriangleMesh& mesh, HalfedgeUVMap uvmap)
+{
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  const auto vpm = get(CGAL::vertex_point, mesh);
+  Uv_mesh out;
+  std::unordered_map<vertex_descriptor, int> index;
+  for(vertex_descriptor v : vertices(mesh)) {
+    index.emplace(v, static_cast<int>(out.positions.size()));
+    out.positions.push_back(internal::to_array_3(get(vpm, v)));
+  }
+  // Per vertex, the vt indices it has so far (a handful at most: one per seam side).
+  std::vector<std::vector<int> > vts(out.positions.size());
+  for(face_descriptor f : faces(mesh)) {
+    std::array<int, 3> p{{0, 0, 0}}, t{{0, 0, 0}};
+    int k = 0;
+    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh)) {
+      CGAL_precondition_msg(k < 3, "make_uv_mesh_from_corners() needs a triangle mesh");
+      if(k == 3)
+        break;
+      const int v = index.at(target(h, mesh));
+      const std::array<double, 2> uv = internal::to_array_2(get(uvmap, h));
+      int found = -1;
+      for(int candidate : vts[v])
+        if(out.uvs[candidate] == uv)
+          found = candidate;
+      if(found < 0) {
+        found = static_cast<int>(out.uvs.size());
+        out.uvs.push_back(uv);
+        vts[v].push_back(found);
+      }
+      p[k] = v;
+      t[k] = found;
+      ++k;
+    }
+    out.face_positions.push_back(p);
+    out.face_uvs.push_back(t);
+  }
+  return out;
+}
+
 /// Copies a parameterized seam mesh into a `Uv_mesh`.
 ///
 /// `positions` holds one entry per vertex of the underlying mesh (`seam_mesh.mesh()`), in its

@@ -210,13 +210,16 @@ inline Index_status check_geometry(const Mesh_index& index)
 /// Indexes the connected component of `mesh` that contains face `seed`, as CGAL's
 /// parameterizers do with the component of their border halfedge.
 /// `vertices` receives the descriptor of each compact vertex index, so results can be written
-/// back through any vertex property map.
+/// back through any vertex property map; `face_descriptors`, when given, that of each face,
+/// whose corners follow `halfedges_around_face(halfedge(f))` (corner c = target of the c-th).
 template <class TriangleMesh, class VertexPointMap>
 Index_status index_mesh(const TriangleMesh& mesh,
                         typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
                         VertexPointMap vpm, Mesh_index& index,
                         std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&
-                          vertices)
+                          vertices,
+                        std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>*
+                          face_descriptors = nullptr)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
@@ -229,6 +232,8 @@ Index_status index_mesh(const TriangleMesh& mesh,
 
   std::vector<face_descriptor> component;
   CGAL::Polygon_mesh_processing::connected_component(seed, mesh, std::back_inserter(component));
+  if(face_descriptors)
+    *face_descriptors = component;
 
   using Vertex_int_tag = CGAL::dynamic_vertex_property_t<int>;
   auto local = get(Vertex_int_tag(), mesh);

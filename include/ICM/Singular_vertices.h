@@ -1,0 +1,175 @@
+// Step 4: the singular (cone) vertex set S (paper Sec. III-C, Algorithm 3), on the surface as
+// given (before any cut).
+//
+// Two ways to choose interior cones:
+// - `curvature_minima` is Algorithm 3: spread the total curvature 2 pi chi uniformly over the
+//   interior, solve u = K^{-1}(k), and rank the local minima of u - u0 (where the surface must
+//   shrink most to become uniformly curved) deepest first;
+// - `greedy_cones` (Ben-Chen, Gotsman, Bunin 2008; Springborn, Schroeder, Pinkall 2008) adds
+//   cones where the current entropy optimum's |u - u0| is largest, and re-solves
+//   warm-started (a few far-apart cones per round once there are several). Each cone removes the worst area distortion left, so the area figure falls
+//   fastest with it (measured in doc/benchmarks.md); it is the default.
+// Both run on the circle packing metric, whose every u is valid: the first optima of a closed
+// surface with two cones need conformal factors of e^30 that no exact metric can reach.
+
+#ifndef ICM_SINGULAR_VERTICES_H
+#define ICM_SINGULAR_VERTICES_H
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace ICM {
+
+/// Algorithm 3: interior vertices that are local minima of u - u0 for uniform interior
+/// curvature (zero on the border), deepest first: where the surface is most positively
+/// curved, the place for cones of positive curvature. With `maxima`, the local maxima,
+/// highest first: the most negatively curved places, for the negative cones of genus > 1.
+/// `message` is set when K^{-1} fails.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metric& metric,
+                                  std::string& message, bool maxima = false)
+{
+  const int nv = index.number_of_vertices();
+  int interior = 0;
+  for(int v = 0; v < nv; ++v)
+    interior += !index.is_boundary_vertex[v];
+  if(interior == 0)
+    return {};
+  Eigen::VectorXd k_target = Eigen::VectorXd::Zero(nv);
+  for(int v = 0; v < nv; ++v)
+    if(!index.is_boundary_vertex[v])
+      k_target[v] = 2.0 * M_PI * index.euler_characteristic() / interior;
+  Eigen::VectorXd u;
+  const Newton_report report = inverse_curvature_map<SparseSolver>(index, metric, k_target, u);
+  if(!report.converged)
+  {
+    message = "uniform curvature: " + report.message;
+    return {};
+  }
+  const Eigen::VectorXd scale = maxima ? Eigen::VectorXd(metric.u0 - u) : Eigen::VectorXd(u - metric.u0);
+  std::vector<char> is_minimum(nv, 0);
+  for(int v = 0; v < nv; ++v)
+    is_minimum[v] = !index.is_boundary_vertex[v];
+  for(const auto& e : index.edges)
+  {
+    if(scale[e[0]] >= scale[e[1]])
+      is_minimum[e[0]] = 0;
+    if(scale[e[1]] >= scale[e[0]])
+      is_minimum[e[1]] = 0;
+  }
+  std::vector<int> minima;
+  for(int v = 0; v < nv; ++v)
+    if(is_minimum[v])
+      minima.push_back(v);
+  std::sort(minima.begin(), minima.end(), [&](int a, int b) { return scale[a] < scale[b]; });
+  return minima;
+}
+
+struct Cone_options
+{
+  /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
+  /// of its neighbourhood changes by less than exp(2 * this). 1.5 keeps area factors within
+  /// e^3 ~ 20 (measured trade-off: doc/benchmarks.md).
+  double max_log_scale = 1.5;
+  /// At most this many interior cones (a user limit); 0 means none.
+  int max_cones = 32;
+  Newton_options newton;
+};
+
+/// What `greedy_cones` chose and how the distortion fell.
+struct Cone_selection
+{
+  std::vector<int> cones;                  ///< interior cone vertices, in the order added
+  std::vector<double> max_log_scale;       ///< max_N |u - u0| before each cone and at the end
+  std::string message;                     ///< empty, or why a solve failed
+  bool ok() const { return message.empty(); }
+};
+
+/// Greedy cone placement on the surface. The singular set starts as the border plus `seeds`;
+/// each round solves the entropy optimum u_S = u0_S, K_N = 0 (warm-started) and makes the
+/// non-singular vertex with the largest |u - u0| a cone, until `max_log_scale` or
+/// `max_cones` is reached. A closed genus-0 surface needs two seeds (one cone would carry
+/// curvature 4 pi); other surfaces need one when they have no border.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric,
+                            const std::vector<int>& seeds, const Cone_options& options = Cone_options())
+{
+  const int nv = index.number_of_vertices();
+  Cone_selection selection;
+  std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  for(int v : seeds)
+    if(!is_singular[v])
+    {
+      is_singular[v] = 1;
+      selection.cones.push_back(v);
+    }
+  Eigen::VectorXd u = metric.u0;
+  for(;;)
+  {
+    std::vector<char> is_free(nv);
+    for(int v = 0; v < nv; ++v)
+      is_free[v] = !is_singular[v];
+    Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, is_free);
+    for(int v = 0; v < nv; ++v)
+      if(is_singular[v])
+        u[v] = metric.u0[v];
+    const Newton_report report =
+      solver.solve(Eigen::VectorXd::Zero(nv), u, options.newton);
+    if(!report.converged)
+    {
+      selection.message = "entropy optimum with " + std::to_string(selection.cones.size()) +
+                          " cones: " + report.message;
+      return selection;
+    }
+    // Candidates: non-singular vertices whose |u - u0| is a local maximum over their ring
+    // (so that one round never puts two cones side by side), largest first.
+    Eigen::VectorXd scale = (u - metric.u0).cwiseAbs();
+    std::vector<char> is_peak(nv);
+    for(int v = 0; v < nv; ++v)
+      is_peak[v] = !is_singular[v];
+    for(const auto& e : index.edges)
+    {
+      if(scale[e[0]] < scale[e[1]] || (scale[e[0]] == scale[e[1]] && e[0] < e[1]))
+        is_peak[e[0]] = 0;
+      else
+        is_peak[e[1]] = 0;
+    }
+    std::vector<int> peaks;
+    for(int v = 0; v < nv; ++v)
+      if(is_peak[v] && scale[v] > options.max_log_scale)
+        peaks.push_back(v);
+    std::sort(peaks.begin(), peaks.end(), [&](int a, int b) { return scale[a] > scale[b]; });
+    double largest = 0;
+    for(int v = 0; v < nv; ++v)
+      if(!is_singular[v])
+        largest = std::max(largest, scale[v]);
+    selection.max_log_scale.push_back(largest);
+    const int room = options.max_cones - static_cast<int>(selection.cones.size());
+    if(peaks.empty() || room <= 0)
+      return selection;
+    // Up to half as many new cones as there are, at least one: a cone changes the optimum
+    // mostly near itself, so far-apart peaks of one round are nearly the peaks the next
+    // rounds would find one by one (refined_elephant: 32 cones in 7 rounds instead of 32).
+    const int batch = std::min({room, static_cast<int>(peaks.size()),
+                                std::max(1, static_cast<int>(selection.cones.size()) / 2)});
+    for(int i = 0; i < batch; ++i)
+    {
+      is_singular[peaks[i]] = 1;
+      selection.cones.push_back(peaks[i]);
+    }
+  }
+}
+
+} // namespace ICM
+
+#endif // ICM_SINGULAR_VERTICES_H

@@ -1,0 +1,466 @@
+// One call for any triangle mesh: `ICM::parameterize(mesh, uv_map, options)`.
+//
+// CGAL's `Parameterizer_3` concept takes one border halfedge and writes one UV per vertex, so
+// it only fits a disk. This entry point takes any triangle mesh (closed, any genus, holes,
+// several components) and writes one UV per corner (a halfedge map, as CGAL's `Seam_mesh`
+// examples use). Per connected component, the two levels of the pipeline stay apart:
+//   on the surface as given   index -> cones (Singular_vertices.h) -> entropy optimum with the
+//                             cones singular, in the metric's class (Optimal_metric.h)
+//   on the surface cut open   cut graph and wedges (Cut_graph.h) -> layout of the surface's
+//                             flat metric, both sides of a seam one length (Layout.h) ->
+//                             checks: orientation, lengths, seams, border overlaps
+// and the charts are then packed side by side (Chart_packing.h). See doc/surfaces.md.
+
+#ifndef ICM_PARAMETERIZE_H
+#define ICM_PARAMETERIZE_H
+
+#include <ICM/Border_overlaps.h>
+#include <ICM/Chart_packing.h>
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_map.h>
+#include <ICM/Cut_graph.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/Layout.h>
+#include <ICM/Singular_vertices.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Surface_mesh_parameterization/Error_code.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace ICM {
+
+/// Options of `ICM::parameterize`.
+struct Surface_parameterization_options
+{
+  /// Interior cones chosen automatically (`greedy_cones`) on closed surfaces, and on
+  /// surfaces with a border whose free-boundary optimum is extreme. False: only the border
+  /// and the user's cones are singular (a torus then needs none; a closed genus-0 surface
+  /// needs user cones).
+  bool automatic_cones = true;
+  Cone_options cones;
+  /// Cones a closed genus-0 surface starts from (Algorithm 3's strongest minima) before the
+  /// greedy placement adds more; 8 is BFF's default count.
+  int initial_cones = 8;
+  /// A surface with a border gets automatic interior cones only when its free-boundary
+  /// optimum changes some area by more than exp(2 * this) (a nearly closed scan: 1e7 to
+  /// 1e19); an ordinary disk keeps its free boundary and no seam.
+  double border_max_log_scale = 5.0;
+  Newton_options newton;
+  bool fall_back_to_circle_packing = true;
+  /// A layout whose edge lengths differ from the metric's by more than this fails. The
+  /// propagation across a long cut disk loses more digits on slivers than on a plain disk
+  /// (mech-holes-shark: 2.4e-6 on its CAD slivers, while its seams agree to 6e-13).
+  double max_layout_length_error = 1e-5;
+};
+
+/// What `ICM::parameterize` did to one connected component.
+struct Chart_report
+{
+  int vertices = 0, faces = 0, boundary_loops = 0, genus = 0;
+  std::vector<int> cones;              ///< interior singular vertices (component indices)
+  std::vector<double> cone_curvatures; ///< their curvature 2 pi - angle sum, same order
+  int seam_edges = 0, homology_generators = 0;
+  std::string metric, fallback_reason;
+  int newton_iterations = 0;
+  double max_curvature_error = 0;      ///< max |k| over non-singular vertices
+  int flipped_faces = 0;
+  int overlapping_border_edges = 0;    ///< pairs of border edges of the chart that cross
+  double max_layout_length_error = 0;
+  double seam_length_error = 0;        ///< max relative difference of a seam's two sides
+};
+
+struct Surface_parameterization_report
+{
+  CGAL::Surface_mesh_parameterization::Error_code status =
+    CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH;
+  std::string message;                 ///< empty on success, else the reason
+  std::vector<Chart_report> charts;    ///< one per connected component
+  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
+         seconds_total = 0;
+
+  int total(int Chart_report::*field) const
+  {
+    int sum = 0;
+    for(const Chart_report& c : charts)
+      sum += c.*field;
+    return sum;
+  }
+};
+
+namespace internal {
+
+/// The entropy optimum for the singular set S (u_S = u0_S, K_N = 0) in the class of `Metric`,
+/// with the surface's lengths and angles at the optimum. `prescribed` (curvature per vertex,
+/// NaN where none) are user cones with a fixed angle: they join the unknowns with their
+/// target curvature.
+template <class Metric, class Solver>
+struct Surface_optimum
+{
+  Metric metric;
+  Eigen::VectorXd u, k;
+  std::vector<double> lengths;
+  std::vector<Triangle_angles> angles;
+  Newton_report newton;
+
+  Surface_optimum(const Mesh_index& index, const std::vector<char>& is_singular,
+                  const std::vector<double>& prescribed, const Newton_options& options)
+    : metric(index)
+  {
+    const int nv = index.number_of_vertices();
+    std::vector<char> is_free(nv);
+    Eigen::VectorXd target = Eigen::VectorXd::Zero(nv);
+    bool any_fixed = false;
+    for(int v = 0; v < nv; ++v)
+    {
+      const bool fixed_angle = !std::isnan(prescribed[v]);
+      is_free[v] = !is_singular[v] || fixed_angle;
+      if(fixed_angle)
+        target[v] = prescribed[v];
+      any_fixed = any_fixed || !is_free[v];
+    }
+    // Every singular angle prescribed: the kernel of Delta is pinned at vertex 0, whose
+    // equation then holds by Gauss-Bonnet (checked by the caller).
+    if(!any_fixed && nv > 0)
+      is_free[0] = 0;
+    Inverse_curvature_map<Solver, Metric> solver(index, metric, is_free);
+    u = metric.u0;
+    newton = solver.solve(target, u, options);
+    solver.curvature_map().evaluate(u, k);
+    lengths = solver.curvature_map().lengths();
+    angles = solver.curvature_map().face_angles();
+  }
+};
+
+/// Max relative difference between the UV lengths of the two sides of every seam edge.
+inline double seam_length_error(const Cut_mesh& cut, const std::vector<Uv>& uv)
+{
+  double worst = 0;
+  for(const auto& sides : cut.disk_edges)
+  {
+    if(sides[1] < 0)
+      continue;
+    auto uv_length = [&](int d) {
+      const Uv &a = uv[cut.disk.edges[d][0]], &b = uv[cut.disk.edges[d][1]];
+      return std::hypot(a[0] - b[0], a[1] - b[1]);
+    };
+    const double l0 = uv_length(sides[0]), l1 = uv_length(sides[1]);
+    worst = std::max(worst, std::abs(l0 - l1) / std::max(l0, l1));
+  }
+  return worst;
+}
+
+/// One component: cones, optimum, cut, layout, checks. `uv` receives one UV per wedge of
+/// `cut.disk`. Returns the failure reason, or empty.
+template <class Metric, class Solver>
+std::string parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
+                                   const std::vector<double>& prescribed,
+                                   const Surface_parameterization_options& options,
+                                   Surface_parameterization_report& report, Chart_report& chart,
+                                   Cut_mesh& cut, std::vector<Uv>& uv)
+{
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const int nv = index.number_of_vertices();
+  const bool closed = index.number_of_boundary_loops() == 0;
+  const int chi = index.euler_characteristic();
+
+  // On the surface: the singular set.
+  Clock::time_point t = Clock::now();
+  std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  int user_cones = 0, free_user_cones = 0;
+  for(int v = 0; v < nv; ++v)
+    if(is_user_cone[v])
+    {
+      is_singular[v] = 1;
+      ++user_cones;
+      free_user_cones += std::isnan(prescribed[v]);
+    }
+  if(closed && user_cones > 0 && free_user_cones == 0)
+  {
+    double sum = 0;
+    for(int v = 0; v < nv; ++v)
+      if(is_user_cone[v])
+        sum += prescribed[v];
+    if(std::abs(sum - 2 * M_PI * chi) > 1e-6)
+      return "the cone curvatures sum to " + std::to_string(sum) + ", Gauss-Bonnet needs 2 pi chi = " +
+             std::to_string(2 * M_PI * chi) + " (chi = " + std::to_string(chi) + ")";
+  }
+  if(options.automatic_cones && options.cones.max_cones > 0)
+  {
+    const Circle_packing_metric packing(index);
+    bool wants_cones = closed;
+    if(!closed)
+    {
+      // A border: cones only when the free-boundary optimum is extreme.
+      Eigen::VectorXd u;
+      const Newton_report free = free_boundary_optimum<Solver>(index, packing, is_singular, u, options.newton);
+      wants_cones = !free.converged || (u - packing.u0).cwiseAbs().maxCoeff() > options.border_max_log_scale;
+    }
+    if(wants_cones)
+    {
+      std::vector<int> seeds;
+      for(int v = 0; v < nv; ++v)
+        if(is_singular[v] && !index.is_boundary_vertex[v])
+          seeds.push_back(v);
+      // Seeds from Algorithm 3's ranking. Genus 0 needs two cones (one would carry 4 pi) but
+      // starts from the `initial_cones` strongest minima: with two, the first optimum needs
+      // conformal factors of e^-30 and many capped Newton steps (bunny00: 6.2 s of cone
+      // placement from 2 seeds, 1.9 s from 8). Genus g > 1 starts with 2g - 2 negative
+      // cones at the maxima, so that no single cone carries all of 2 pi chi.
+      const int needed = !closed ? 0 : chi > 0 ? std::max(2, options.initial_cones) : chi == 0 ? 1 : -chi;
+      if(static_cast<int>(seeds.size()) < needed)
+      {
+        std::string why;
+        std::vector<int> minima = curvature_minima<Solver>(index, packing, why, chi < 0);
+        for(int v : minima)
+          if(static_cast<int>(seeds.size()) < needed && !is_singular[v])
+            seeds.push_back(v);
+        const int minimum = chi > 0 ? 2 : 1;
+        for(int v = 0; static_cast<int>(seeds.size()) < minimum && v < nv; ++v)
+          if(std::find(seeds.begin(), seeds.end(), v) == seeds.end())
+            seeds.push_back(v); // a surface with too few minima (a tiny closed mesh)
+      }
+      const Cone_selection selection = greedy_cones<Solver>(index, packing, seeds, options.cones);
+      if(!selection.ok())
+        return selection.message;
+      for(int v : selection.cones)
+        is_singular[v] = 1;
+    }
+  }
+  if(closed && chi > 0 && std::count(is_singular.begin(), is_singular.end(), 1) < 2)
+    return "a closed genus-0 surface needs at least two cones (automatic cones are off)";
+  report.seconds_cones += seconds_since(t);
+
+  // On the surface: the optimum in the class of `Metric`, else of the circle packing.
+  t = Clock::now();
+  Surface_optimum<Metric, Solver> optimum(index, is_singular, prescribed, options.newton);
+  chart.metric = Metric::name;
+  std::vector<double> lengths = optimum.lengths;
+  std::vector<Triangle_angles> angles = optimum.angles;
+  Eigen::VectorXd k = optimum.k;
+  chart.newton_iterations = optimum.newton.iterations;
+  std::string failure = optimum.newton.converged ? "" : optimum.newton.message;
+  if(!failure.empty() && !std::is_same<Metric, Circle_packing_metric>::value &&
+     options.fall_back_to_circle_packing)
+  {
+    chart.fallback_reason = std::string(Metric::name) + ": " + failure;
+    Surface_optimum<Circle_packing_metric, Solver> packing(index, is_singular, prescribed, options.newton);
+    chart.metric = Circle_packing_metric::name;
+    chart.newton_iterations = packing.newton.iterations;
+    failure = packing.newton.converged ? "" : packing.newton.message;
+    lengths = packing.lengths;
+    angles = packing.angles;
+    k = packing.k;
+  }
+  report.seconds_optimum += seconds_since(t);
+  if(!failure.empty())
+    return failure;
+  for(int v = 0; v < nv; ++v)
+    if(is_singular[v] && !index.is_boundary_vertex[v])
+    {
+      chart.cones.push_back(v);
+      chart.cone_curvatures.push_back(k[v]);
+    }
+    else if(!is_singular[v])
+      chart.max_curvature_error = std::max(chart.max_curvature_error, std::abs(k[v]));
+
+  // The cut: through every cone that carries curvature (a torus's pinned vertex does not).
+  t = Clock::now();
+  std::vector<char> is_cone(nv, 0);
+  for(std::size_t i = 0; i < chart.cones.size(); ++i)
+    is_cone[chart.cones[i]] = std::abs(chart.cone_curvatures[i]) > 1e-9;
+  const Cut_graph_result graph = cut_graph(index, is_cone);
+  if(!graph.ok())
+    return graph.status.message;
+  chart.seam_edges = graph.number_of_seam_edges;
+  chart.homology_generators = graph.number_of_generators;
+  cut = cut_mesh(index, graph.is_seam);
+  if(!cut.ok())
+    return cut.status.message;
+  report.seconds_cut += seconds_since(t);
+
+  // On the cut: the surface's flat metric laid out, both sides of a seam one length.
+  t = Clock::now();
+  std::vector<double> disk_lengths(cut.disk.number_of_edges());
+  for(int d = 0; d < cut.disk.number_of_edges(); ++d)
+    disk_lengths[d] = lengths[cut.surface_edge[d]];
+  uv = layout_by_propagation(cut.disk, disk_lengths, angles);
+  const Layout_check check = check_layout(cut.disk, disk_lengths, uv);
+  chart.flipped_faces = check.flipped_faces;
+  chart.max_layout_length_error = check.max_relative_length_error;
+  chart.seam_length_error = seam_length_error(cut, uv);
+  bool finite = true;
+  for(const Uv& p : uv)
+    finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]);
+  if(finite)
+    chart.overlapping_border_edges = count_border_overlaps(cut.disk, uv).crossing_pairs;
+  report.seconds_layout += seconds_since(t);
+  if(!finite || check.flipped_faces > 0)
+    return std::to_string(check.flipped_faces) + " faces are flipped in the layout";
+  if(!(check.max_relative_length_error <= options.max_layout_length_error))
+    return "the layout does not reproduce the metric (relative edge length error " +
+           std::to_string(check.max_relative_length_error) + ")";
+  return {};
+}
+
+} // namespace internal
+
+/// \brief Parameterizes any triangle mesh: every connected component is cut into a disk
+/// through its cones (chosen automatically, or the user's), laid out with the minimum of the
+/// curvature entropy in the class of `Metric`, and the charts are packed side by side at
+/// their 3D scale.
+///
+/// \tparam TriangleMesh a model of `FaceGraph`
+/// \tparam HalfedgeUVMap a writable property map from `halfedge_descriptor` to a 2D point:
+///         the UV of the corner at `target(h)` in `face(h)` (border halfedges get the UV of
+///         the corner across `next(h)`). It serves directly as the UV map of a
+///         `CGAL::Seam_mesh` whose seams are `seam_edges`.
+/// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is `Default_metric`
+/// \param user_cones vertices that must be singular: with a curvature 2 pi - angle, or NaN
+///        to leave the angle to the optimum (Thm 3.5)
+/// \param seam_edges if not null, receives the seam edges of every chart
+template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class TriangleMesh,
+          class HalfedgeUVMap>
+Surface_parameterization_report parameterize(
+  const TriangleMesh& mesh, HalfedgeUVMap uv_map,
+  const Surface_parameterization_options& options = Surface_parameterization_options(),
+  const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones = {},
+  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
+  using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+
+  Surface_parameterization_report report;
+  auto finish = [&](Error_code code, const std::string& why) {
+    report.status = code;
+    report.message = why;
+    report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+    return report;
+  };
+  if(faces(mesh).empty())
+    return finish(ERROR_EMPTY_MESH, "the mesh has no faces");
+
+  // Components, each with a seed face.
+  auto component_of = get(CGAL::dynamic_face_property_t<std::size_t>(), mesh);
+  const std::size_t components = CGAL::Polygon_mesh_processing::connected_components(mesh, component_of);
+  std::vector<face_descriptor> seeds(components, boost::graph_traits<TriangleMesh>::null_face());
+  for(face_descriptor f : faces(mesh))
+    if(seeds[get(component_of, f)] == boost::graph_traits<TriangleMesh>::null_face())
+      seeds[get(component_of, f)] = f;
+
+  for(const auto& [v, curvature] : user_cones)
+  {
+    if(v == boost::graph_traits<TriangleMesh>::null_vertex())
+      return finish(ERROR_WRONG_PARAMETER, "a user cone is the null vertex");
+    if(is_border(v, mesh))
+      return finish(ERROR_WRONG_PARAMETER, "a user cone is a boundary vertex (border vertices are "
+                                           "singular already; prescribe interior cones only)");
+    if(!std::isnan(curvature) && !(curvature < 2 * M_PI))
+      return finish(ERROR_WRONG_PARAMETER, "a user cone angle must be positive (curvature " +
+                                             std::to_string(curvature) + " >= 2 pi)");
+  }
+
+  std::vector<std::vector<Uv>> chart_uvs(components);
+  std::vector<Cut_mesh> cuts(components);
+  std::vector<std::vector<face_descriptor>> chart_faces(components);
+  for(std::size_t c = 0; c < components; ++c)
+  {
+    internal::Mesh_index index;
+    std::vector<vertex_descriptor> vertices;
+    const internal::Index_status indexed = internal::index_mesh(
+      mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices, &chart_faces[c]);
+    Chart_report chart;
+    chart.vertices = index.number_of_vertices();
+    chart.faces = index.number_of_faces();
+    chart.boundary_loops = index.number_of_boundary_loops();
+    chart.genus = index.genus();
+    if(!indexed.ok())
+      return finish(indexed.code, "component " + std::to_string(c) + ": " + indexed.message);
+    std::vector<char> is_user_cone(index.number_of_vertices(), 0);
+    std::vector<double> prescribed(index.number_of_vertices(), std::nan(""));
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+    {
+      const auto it = user_cones.find(vertices[v]);
+      if(it != user_cones.end())
+      {
+        is_user_cone[v] = 1;
+        prescribed[v] = it->second;
+      }
+    }
+    const std::string failure = internal::parameterize_component<Metric, Solver>(
+      index, is_user_cone, prescribed, options, report, chart, cuts[c], chart_uvs[c]);
+    report.charts.push_back(chart);
+    if(!failure.empty())
+      return finish(failure.find("flipped") != std::string::npos ||
+                        failure.find("reproduce") != std::string::npos
+                      ? ERROR_NO_1_TO_1_MAPPING
+                      : ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
+                    "component " + std::to_string(c) + " (" + std::to_string(chart.vertices) +
+                      " vertices, genus " + std::to_string(chart.genus) + ", " +
+                      std::to_string(chart.boundary_loops) + " boundary loops): " + failure);
+    if(seam_edges)
+      for(int e = 0; e < index.number_of_edges(); ++e)
+        if(cuts[c].disk_edges[e][1] >= 0)
+          seam_edges->push_back(edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
+  }
+
+  // The charts side by side, each at its 3D scale: UV area = 3D area.
+  std::vector<Chart_box> boxes;
+  for(std::size_t c = 0; c < components; ++c)
+  {
+    const internal::Mesh_index& disk = cuts[c].disk;
+    double uv_area = 0, area = 0;
+    for(const auto& f : disk.faces)
+    {
+      const Uv &a = chart_uvs[c][f[0]], &b = chart_uvs[c][f[1]], &d = chart_uvs[c][f[2]];
+      uv_area += 0.5 * ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+      area += internal::triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
+    }
+    const double scale = std::sqrt(area / uv_area);
+    for(Uv& p : chart_uvs[c])
+      p = {p[0] * scale, p[1] * scale};
+    boxes.push_back(chart_bounding_box(chart_uvs[c]));
+  }
+  const std::vector<Uv> offsets = shelf_pack(boxes);
+
+  using Uv_point = typename boost::property_traits<HalfedgeUVMap>::value_type;
+  for(std::size_t c = 0; c < components; ++c)
+    for(std::size_t f = 0; f < chart_faces[c].size(); ++f)
+    {
+      int corner = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(chart_faces[c][f], mesh), mesh))
+      {
+        const Uv& p = chart_uvs[c][cuts[c].disk.faces[f][corner++]];
+        const Uv_point q(p[0] + offsets[c][0], p[1] + offsets[c][1]);
+        put(uv_map, h, q);
+        // The border halfedge into the same vertex, if any, shares this corner's wedge when
+        // it is the corner next to the border.
+        const halfedge_descriptor out = opposite(next(h, mesh), mesh);
+        if(is_border(out, mesh))
+          put(uv_map, prev(out, mesh), q);
+      }
+    }
+  return finish(OK, "");
+}
+
+} // namespace ICM
+
+#endif // ICM_PARAMETERIZE_H

@@ -1,0 +1,684 @@
+// Global overlaps of a layout (Border_overlaps.h) and the packing of several charts into one
+// UV map (Chart_packing.h).
+//
+// Every mesh is built by hand so that the expected answer is known: a disk laid out as itself,
+// a strip bent along a spiral (past one turn it lies over itself although no face is flipped),
+// polygons with touching, collinear and one-ulp-apart border vertices, and random polygons
+// checked against an all-pairs count.
+
+#include "test_support.h"
+
+#include <ICM/Border_overlaps.h>
+#include <ICM/Chart_packing.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using ICM::Uv;
+using ICM::internal::Mesh_index;
+
+const double pi = 3.14159265358979323846;
+
+/// The index of a planar mesh whose 3D points are its plane points (z = 0).
+Mesh_index make_index(const std::vector<Uv>& plane, const std::vector<std::array<int, 3>>& faces)
+{
+  Mesh_index index;
+  for(const Uv& p : plane)
+    index.points.push_back({p[0], p[1], 0.0});
+  index.faces = faces;
+  const ICM::internal::Index_status status = ICM::internal::build_connectivity(index);
+  EXPECT_TRUE(status.ok()) << status.message;
+  return index;
+}
+
+double signed_area(const Uv& a, const Uv& b, const Uv& c)
+{
+  return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+}
+
+int non_positive_faces(const Mesh_index& index, const std::vector<Uv>& uv)
+{
+  int count = 0;
+  for(const auto& f : index.faces)
+    if(!(signed_area(uv[f[0]], uv[f[1]], uv[f[2]]) > 0))
+      ++count;
+  return count;
+}
+
+/// A disk of `rings` rings of `sectors` vertices around a centre, counter-clockwise.
+struct Polar_disk
+{
+  std::vector<Uv> plane;
+  std::vector<std::array<int, 3>> faces;
+};
+
+Polar_disk polar_disk(int rings, int sectors)
+{
+  Polar_disk disk;
+  disk.plane.push_back({0.0, 0.0});
+  for(int r = 1; r <= rings; ++r)
+    for(int s = 0; s < sectors; ++s)
+    {
+      const double angle = 2 * pi * (s + 0.5 * (r % 2)) / sectors;
+      disk.plane.push_back({r * std::cos(angle), r * std::sin(angle)});
+    }
+  auto vertex = [sectors](int r, int s) { return r == 0 ? 0 : 1 + (r - 1) * sectors + (s % sectors); };
+  for(int s = 0; s < sectors; ++s)
+    disk.faces.push_back({0, vertex(1, s), vertex(1, s + 1)});
+  for(int r = 1; r < rings; ++r)
+    for(int s = 0; s < sectors; ++s)
+    {
+      disk.faces.push_back({vertex(r, s), vertex(r + 1, s), vertex(r + 1, s + 1)});
+      disk.faces.push_back({vertex(r, s), vertex(r + 1, s + 1), vertex(r, s + 1)});
+    }
+  // Odd rings are turned by half a sector: the two triangles of each quad must still be
+  // positive, which the layout check below confirms.
+  return disk;
+}
+
+/// A strip of `columns` x `rows` quads, each split in two; vertex (i, j) is j (columns + 1) + i.
+/// Faces are counter-clockwise in the (i, j) plane.
+struct Strip
+{
+  int columns, rows;
+  int vertex(int i, int j) const { return j * (columns + 1) + i; }
+  int column(int v) const { return v % (columns + 1); }
+
+  Mesh_index index() const
+  {
+    std::vector<Uv> plane;
+    for(int j = 0; j <= rows; ++j)
+      for(int i = 0; i <= columns; ++i)
+        plane.push_back({double(i), double(j)});
+    std::vector<std::array<int, 3>> faces;
+    for(int j = 0; j < rows; ++j)
+      for(int i = 0; i < columns; ++i)
+      {
+        faces.push_back({vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1)});
+        faces.push_back({vertex(i, j), vertex(i + 1, j + 1), vertex(i, j + 1)});
+      }
+    return make_index(plane, faces);
+  }
+
+  /// The strip wound along a spiral through `total_degrees`: column i at angle
+  /// i total / columns, row j at radius 2 + 0.6 angle / 2 pi - 0.5 j. The strip is 1 wide and
+  /// climbs 0.6 per turn, so past one turn it lies over its first turn; rows running inwards
+  /// keep every face counter-clockwise.
+  std::vector<Uv> spiral(double total_degrees) const
+  {
+    std::vector<Uv> uv((columns + 1) * (rows + 1));
+    for(int j = 0; j <= rows; ++j)
+      for(int i = 0; i <= columns; ++i)
+      {
+        const double angle = total_degrees * pi / 180 * i / columns;
+        const double radius = 2 + 0.6 * angle / (2 * pi) - 1.0 * j / rows;
+        uv[vertex(i, j)] = {radius * std::cos(angle), radius * std::sin(angle)};
+      }
+    return uv;
+  }
+
+  bool is_cap_edge(const Mesh_index& index, int e) const
+  {
+    const int a = column(index.edges[e][0]), b = column(index.edges[e][1]);
+    return a == b && (a == 0 || a == columns);
+  }
+};
+
+/// A fan of triangles from an extra centre vertex (the last one) to the closed polygon `loop`:
+/// a disk whose border is exactly `loop`, whatever the polygon looks like.
+Mesh_index fan(const std::vector<Uv>& loop, std::vector<Uv>& uv)
+{
+  const int n = static_cast<int>(loop.size());
+  std::vector<std::array<int, 3>> faces;
+  for(int i = 0; i < n; ++i)
+    faces.push_back({i, (i + 1) % n, n});
+  uv = loop;
+  Uv centre{0.0, 0.0};
+  for(const Uv& p : loop)
+    centre = {centre[0] + p[0] / n, centre[1] + p[1] / n};
+  uv.push_back(centre);
+  return make_index(uv, faces);
+}
+
+/// The ids of the border edges of a fan, edge i running from loop vertex i to i + 1.
+std::vector<int> fan_border_edges(const Mesh_index& index)
+{
+  return index.boundary_loop_edges.at(0);
+}
+
+/// All pairs of non-adjacent polygon edges that cross properly, with plain floating point:
+/// enough for random points, which are in general position with probability one.
+int brute_force_crossings(const std::vector<Uv>& loop)
+{
+  const int n = static_cast<int>(loop.size());
+  auto side = [](const Uv& a, const Uv& b, const Uv& c) {
+    const double d = signed_area(a, b, c);
+    return (d > 0) - (d < 0);
+  };
+  int count = 0;
+  for(int i = 0; i < n; ++i)
+    for(int j = i + 1; j < n; ++j)
+    {
+      if(j == i + 1 || (i == 0 && j == n - 1))
+        continue;
+      const Uv &a = loop[i], &b = loop[(i + 1) % n], &c = loop[j], &d = loop[(j + 1) % n];
+      if(side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0)
+        ++count;
+    }
+  return count;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------------------------
+// Border overlaps
+
+TEST(BorderOverlaps, DiskLaidOutAsItselfHasNone)
+{
+  const Polar_disk disk = polar_disk(6, 24);
+  const Mesh_index index = make_index(disk.plane, disk.faces);
+  ASSERT_TRUE(index.is_disk());
+  ASSERT_EQ(non_positive_faces(index, disk.plane), 0);
+
+  const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, disk.plane);
+  EXPECT_EQ(overlaps.crossing_pairs, 0);
+  EXPECT_TRUE(overlaps.pairs.empty());
+  EXPECT_TRUE(overlaps.empty());
+  EXPECT_TRUE(ICM::overlapping_face_pairs(index, disk.plane).empty());
+}
+
+TEST(BorderOverlaps, SpiralStripBelowOneTurnHasNone)
+{
+  const Strip strip{40, 2};
+  const Mesh_index index = strip.index();
+  for(double degrees : {90.0, 300.0, 350.0})
+  {
+    const std::vector<Uv> uv = strip.spiral(degrees);
+    ASSERT_EQ(non_positive_faces(index, uv), 0) << degrees;
+    EXPECT_EQ(ICM::count_border_overlaps(index, uv).crossing_pairs, 0) << degrees;
+    EXPECT_TRUE(ICM::overlapping_face_pairs(index, uv).empty()) << degrees;
+  }
+}
+
+// Past one turn, the start cap (column 0, radii [1, 2]) is crossed by the inner border of the
+// second turn (radius 1.6 at 360 degrees) and the end cap by the outer border of the first
+// turn (0.6 below the end's outer radius, inside the cap): exactly two pairs, each made of a
+// cap edge and a long border edge. The totals avoid a vertex landing on the 360-degree ray.
+TEST(BorderOverlaps, SpiralStripPastOneTurnCrossesItself)
+{
+  const Strip strip{40, 2};
+  const Mesh_index index = strip.index();
+  for(double degrees : {440.0, 500.0, 610.0, 700.0})
+  {
+    const std::vector<Uv> uv = strip.spiral(degrees);
+    ASSERT_EQ(non_positive_faces(index, uv), 0) << degrees;
+
+    const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
+    EXPECT_EQ(overlaps.crossing_pairs, 2) << degrees;
+    ASSERT_EQ(overlaps.pairs.size(), 2u);
+    for(const auto& pair : overlaps.pairs)
+    {
+      EXPECT_LT(pair.first, pair.second);
+      EXPECT_LT(index.edge_faces[pair.first][1], 0);
+      EXPECT_LT(index.edge_faces[pair.second][1], 0);
+      EXPECT_NE(strip.is_cap_edge(index, pair.first), strip.is_cap_edge(index, pair.second))
+        << degrees << ": edges " << pair.first << ", " << pair.second;
+    }
+    // The face test sees the same fold, which no flipped face reveals.
+    EXPECT_TRUE(ICM::has_overlapping_faces(index, uv, [&] {
+      std::vector<int> all(index.number_of_faces());
+      for(int f = 0; f < index.number_of_faces(); ++f)
+        all[f] = f;
+      return all;
+    }()));
+  }
+}
+
+TEST(BorderOverlaps, FaceSubsetOfOneTurnDoesNotOverlap)
+{
+  const Strip strip{40, 2};
+  const Mesh_index index = strip.index();
+  const std::vector<Uv> uv = strip.spiral(500.0);
+  // Faces are listed column by column per row; keep the columns of the first 300 degrees.
+  std::vector<int> first_turn, whole;
+  for(int f = 0; f < index.number_of_faces(); ++f)
+  {
+    whole.push_back(f);
+    if(f % (2 * strip.columns) < 2 * 24) // 24 of 40 columns = 300 degrees
+      first_turn.push_back(f);
+  }
+  EXPECT_FALSE(ICM::has_overlapping_faces(index, uv, first_turn));
+  EXPECT_TRUE(ICM::has_overlapping_faces(index, uv, whole));
+  for(const auto& pair : ICM::overlapping_face_pairs(index, uv, whole))
+    EXPECT_LT(pair.first, pair.second);
+}
+
+TEST(BorderOverlaps, FoldedInteriorVertexIsAFaceOverlapOnly)
+{
+  const Polar_disk disk = polar_disk(3, 12);
+  const Mesh_index index = make_index(disk.plane, disk.faces);
+  std::vector<Uv> uv = disk.plane;
+  uv[0] = {1.6, 0.2}; // the centre dragged past its ring: flipped faces, border untouched
+  ASSERT_GT(non_positive_faces(index, uv), 0);
+  EXPECT_EQ(ICM::count_border_overlaps(index, uv).crossing_pairs, 0);
+  EXPECT_FALSE(ICM::overlapping_face_pairs(index, uv).empty());
+}
+
+// Loop 0 -> 1 -> 2 -> 3 with edge 30 leaving vertex 0 almost along edge 01: a needle at
+// vertex 0, one unit long and 1e-12 thin.
+TEST(BorderOverlaps, EdgesMeetingAtTheirSharedVertexDoNotCount)
+{
+  auto count_with = [](double y3) {
+    std::vector<Uv> uv;
+    const Mesh_index index = fan({{0, 0}, {2, 0}, {2, 1}, {1, y3}}, uv);
+    return ICM::count_border_overlaps(index, uv).crossing_pairs;
+  };
+  EXPECT_EQ(count_with(1e-12), 0);  // 30 and 01 meet only at vertex 0
+  EXPECT_EQ(count_with(0.0), 2);    // 30 lies along 01, and 23 ends on it
+  EXPECT_EQ(count_with(-1e-12), 1); // 23 crosses 01; 30 leaves below it
+
+  // A single triangle: three border edges, every pair sharing a vertex.
+  const Mesh_index triangle = make_index({{0, 0}, {1, 0}, {0, 1}}, {{0, 1, 2}});
+  EXPECT_EQ(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}, {0, 1}}).crossing_pairs, 0);
+}
+
+TEST(BorderOverlaps, EdgesSharingAVertexCountWhenCollinearAndOverlapping)
+{
+  const Mesh_index triangle = make_index({{0, 0}, {1, 0}, {0, 1}}, {{0, 1, 2}});
+  // Flattened with vertex 2 between 0 and 1: edge 01 overlaps both 02 and 12, which meet
+  // each other only at vertex 2, where they leave in opposite directions.
+  const ICM::Border_overlaps between =
+    ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {1, 0}});
+  EXPECT_EQ(between.crossing_pairs, 2);
+  // Flattened with vertex 2 beyond vertex 1: 02 overlaps 01 and 12; 01 and 12 only touch.
+  const ICM::Border_overlaps beyond =
+    ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {3, 0}});
+  EXPECT_EQ(beyond.crossing_pairs, 2);
+}
+
+// Loop 0 -> 1 -> 2 -> 3 -> 4 with vertex 3 on, just above, or just below edge 01, and the
+// edges 23 and 34 above that edge: they touch it, miss it by one ulp, or cross it.
+TEST(BorderOverlaps, TouchingIsDecidedExactly)
+{
+  auto count_with = [](double y3) {
+    std::vector<Uv> uv;
+    const Mesh_index index = fan({{0, 0}, {3, 1}, {3, 4}, {1.5, y3}, {0, 4}}, uv);
+    return ICM::count_border_overlaps(index, uv).crossing_pairs;
+  };
+  EXPECT_EQ(count_with(0.5), 2);                         // on the edge: touches
+  EXPECT_EQ(count_with(std::nextafter(0.5, 1.0)), 0);    // one ulp above: clear
+  EXPECT_EQ(count_with(std::nextafter(0.5, 0.0)), 2);    // one ulp below: crosses
+}
+
+TEST(BorderOverlaps, DistinctVerticesAtOneUvOverlap)
+{
+  // A square with vertex 3 put on top of vertex 1. The two pairs of edges without a common
+  // vertex (01, 23) and (12, 30) meet at that point; edges 12 and 23 now run over one
+  // segment, and so do 30 and 01: four pairs.
+  std::vector<Uv> uv;
+  const Mesh_index index = fan({{0, 0}, {1, 0}, {1, 1}, {1, 0}}, uv);
+  const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
+  EXPECT_EQ(overlaps.crossing_pairs, 4);
+}
+
+TEST(BorderOverlaps, MatchesAllPairsOnRandomPolygons)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for(int n : {5, 40, 300})
+  {
+    std::vector<Uv> loop(n);
+    for(Uv& p : loop)
+      p = {coordinate(random), coordinate(random)};
+    std::vector<Uv> uv;
+    const Mesh_index index = fan(loop, uv);
+    const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
+    EXPECT_EQ(overlaps.crossing_pairs, brute_force_crossings(loop)) << n;
+    EXPECT_TRUE(std::is_sorted(overlaps.pairs.begin(), overlaps.pairs.end()));
+    EXPECT_TRUE(std::adjacent_find(overlaps.pairs.begin(), overlaps.pairs.end()) ==
+                overlaps.pairs.end());
+  }
+}
+
+TEST(BorderOverlaps, SeveralBoundaryLoopsAreCheckedTogether)
+{
+  // An annulus: the inner loop pushed outside the outer one crosses it.
+  const int sectors = 16;
+  std::vector<Uv> plane;
+  for(int r = 1; r <= 2; ++r)
+    for(int s = 0; s < sectors; ++s)
+      plane.push_back({r * std::cos(2 * pi * s / sectors), r * std::sin(2 * pi * s / sectors)});
+  std::vector<std::array<int, 3>> faces;
+  for(int s = 0; s < sectors; ++s)
+  {
+    const int a = s, b = (s + 1) % sectors, c = sectors + s, d = sectors + (s + 1) % sectors;
+    faces.push_back({a, c, d});
+    faces.push_back({a, d, b});
+  }
+  const Mesh_index index = make_index(plane, faces);
+  ASSERT_EQ(index.number_of_boundary_loops(), 2);
+  EXPECT_EQ(ICM::count_border_overlaps(index, plane).crossing_pairs, 0);
+
+  std::vector<Uv> shifted = plane;
+  for(int s = 0; s < sectors; ++s)
+    shifted[s][0] += 2.5; // the inner circle now straddles the outer one's right side
+  EXPECT_GT(ICM::count_border_overlaps(index, shifted).crossing_pairs, 0);
+}
+
+TEST(BorderOverlaps, RejectsBadInput)
+{
+  const Mesh_index triangle = make_index({{0, 0}, {1, 0}, {0, 1}}, {{0, 1, 2}});
+  EXPECT_THROW(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}}), std::invalid_argument);
+  EXPECT_THROW(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}, {0, std::nan("")}}),
+               std::invalid_argument);
+  EXPECT_THROW(ICM::overlapping_face_pairs(triangle, {{0, 0}, {1, 0}, {0, 1}}, {3}),
+               std::invalid_argument);
+}
+
+// Not a pass/fail figure: prints how long a 100k-edge border takes (see the report).
+TEST(BorderOverlaps, LargeCircleBorderTiming)
+{
+  const int n = 100000;
+  std::vector<Uv> loop(n);
+  for(int i = 0; i < n; ++i)
+    loop[i] = {std::cos(2 * pi * i / n), std::sin(2 * pi * i / n)};
+  std::vector<Uv> uv;
+  const Mesh_index index = fan(loop, uv);
+  ASSERT_EQ(static_cast<int>(fan_border_edges(index).size()), n);
+
+  const auto start = std::chrono::steady_clock::now();
+  const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
+  const double seconds = seconds_since(start);
+  EXPECT_EQ(overlaps.crossing_pairs, 0);
+
+  // The same circle with a slit folded over: one vertex pushed across the far side.
+  std::vector<Uv> folded = uv;
+  folded[0] = {-1.5, 0.0};
+  const auto start_folded = std::chrono::steady_clock::now();
+  const int folded_pairs = ICM::count_border_overlaps(index, folded).crossing_pairs;
+  const double seconds_folded = seconds_since(start_folded);
+  EXPECT_EQ(folded_pairs, 2); // its two long edges cross the circle's left side once each
+
+  // Faces of a 100k-face disk (the fan above would make every box a candidate pair).
+  const Polar_disk disk = polar_disk(100, 500);
+  const Mesh_index disk_index = make_index(disk.plane, disk.faces);
+  const auto start_faces = std::chrono::steady_clock::now();
+  const bool faces_overlap = !ICM::overlapping_face_pairs(disk_index, disk.plane).empty();
+  const double seconds_faces = seconds_since(start_faces);
+  EXPECT_FALSE(faces_overlap);
+
+  std::cout << "[ timing ] count_border_overlaps, " << n << " border edges: " << seconds * 1e3
+            << " ms (folded: " << seconds_folded * 1e3 << " ms); overlapping_face_pairs, "
+            << disk_index.number_of_faces() << " faces: " << seconds_faces * 1e3 << " ms\n";
+  RecordProperty("border_overlaps_100k_ms", static_cast<int>(seconds * 1e3));
+}
+
+// ------------------------------------------------------------------------------------------
+// Chart packing
+
+namespace {
+
+bool boxes_apart(const ICM::Chart_box& a, const ICM::Chart_box& b, double gap)
+{
+  const double slack = 1e-9 * (1 + gap);
+  return a[2] + gap <= b[0] + slack || b[2] + gap <= a[0] + slack ||
+         a[3] + gap <= b[1] + slack || b[3] + gap <= a[1] + slack;
+}
+
+/// Checks the contract of a packing: sizes kept, boxes a gap apart, extent from (0, 0).
+void expect_valid_packing(const std::vector<ICM::Chart_box>& boxes,
+                          const ICM::Chart_packing& packing)
+{
+  ASSERT_EQ(packing.placements.size(), boxes.size());
+  std::vector<ICM::Chart_box> placed;
+  double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL;
+  for(std::size_t i = 0; i < boxes.size(); ++i)
+  {
+    if(ICM::is_empty_box(boxes[i]))
+      continue;
+    const ICM::Chart_box p = ICM::placed_box(boxes[i], packing.placements[i]);
+    const double w = boxes[i][2] - boxes[i][0], h = boxes[i][3] - boxes[i][1];
+    const double pw = p[2] - p[0], ph = p[3] - p[1];
+    const double tolerance = 1e-9 * (1 + std::max(w, h));
+    if(packing.placements[i].rotated)
+    {
+      EXPECT_NEAR(pw, h, tolerance);
+      EXPECT_NEAR(ph, w, tolerance);
+    }
+    else
+    {
+      EXPECT_NEAR(pw, w, tolerance);
+      EXPECT_NEAR(ph, h, tolerance);
+    }
+    xmin = std::min(xmin, p[0]);
+    ymin = std::min(ymin, p[1]);
+    xmax = std::max(xmax, p[2]);
+    ymax = std::max(ymax, p[3]);
+    placed.push_back(p);
+  }
+  for(std::size_t i = 0; i < placed.size(); ++i)
+    for(std::size_t j = i + 1; j < placed.size(); ++j)
+      EXPECT_TRUE(boxes_apart(placed[i], placed[j], packing.gap)) << i << " " << j;
+  if(!placed.empty())
+  {
+    EXPECT_NEAR(xmin, 0.0, 1e-9 * (1 + packing.width));
+    EXPECT_NEAR(ymin, 0.0, 1e-9 * (1 + packing.height));
+    EXPECT_NEAR(xmax, packing.width, 1e-9 * (1 + packing.width));
+    EXPECT_NEAR(ymax, packing.height, 1e-9 * (1 + packing.height));
+  }
+}
+
+std::vector<ICM::Chart_box> random_boxes(int n, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> position(-50.0, 50.0), size(0.1, 10.0);
+  std::vector<ICM::Chart_box> boxes;
+  for(int i = 0; i < n; ++i)
+  {
+    const double x = position(random), y = position(random);
+    boxes.push_back({x, y, x + size(random), y + size(random)});
+  }
+  return boxes;
+}
+
+double aspect(const ICM::Chart_packing& packing)
+{
+  return std::max(packing.width, packing.height) / std::min(packing.width, packing.height);
+}
+
+} // namespace
+
+TEST(ChartPacking, RandomBoxesDoNotOverlapAndKeepTheirSize)
+{
+  for(unsigned seed : {1u, 2u, 3u})
+  {
+    const std::vector<ICM::Chart_box> boxes = random_boxes(200, seed);
+    const ICM::Chart_packing packing = ICM::shelf_pack_charts(boxes);
+    expect_valid_packing(boxes, packing);
+    double largest = 0, area = 0;
+    for(const auto& b : boxes)
+    {
+      largest = std::max({largest, b[2] - b[0], b[3] - b[1]});
+      area += (b[2] - b[0]) * (b[3] - b[1]);
+    }
+    EXPECT_DOUBLE_EQ(packing.gap, 0.02 * largest);
+    for(const auto& placement : packing.placements)
+      EXPECT_FALSE(placement.rotated);
+    // Shelves of random heights waste space, but not most of it.
+    EXPECT_LT(packing.width * packing.height, 2.0 * area);
+    EXPECT_LE(aspect(packing), 1.5);
+  }
+}
+
+TEST(ChartPacking, ManyEqualBoxesPackIntoASquare)
+{
+  for(int n = 2; n <= 120; ++n)
+  {
+    const std::vector<ICM::Chart_box> boxes(n, ICM::Chart_box{3, 4, 5, 5}); // 2 x 1 each
+    const ICM::Chart_packing packing = ICM::shelf_pack_charts(boxes);
+    expect_valid_packing(boxes, packing);
+    EXPECT_LE(aspect(packing), 3.0) << n << " boxes: " << packing.width << " x " << packing.height;
+  }
+  const std::vector<ICM::Chart_box> squares(100, ICM::Chart_box{0, 0, 1, 1});
+  const ICM::Chart_packing packing = ICM::shelf_pack_charts(squares);
+  EXPECT_LE(aspect(packing), 1.25);
+}
+
+TEST(ChartPacking, ShelfPackOffsetsTranslateInInputOrder)
+{
+  const std::vector<ICM::Chart_box> boxes = random_boxes(30, 11);
+  const std::vector<Uv> offsets = ICM::shelf_pack(boxes);
+  const ICM::Chart_packing packing = ICM::shelf_pack_charts(boxes);
+  ASSERT_EQ(offsets.size(), boxes.size());
+  for(std::size_t i = 0; i < boxes.size(); ++i)
+  {
+    EXPECT_EQ(offsets[i], packing.placements[i].offset);
+    EXPECT_EQ(packing.placements[i]({1.0, 2.0}), (Uv{1.0 + offsets[i][0], 2.0 + offsets[i][1]}));
+  }
+  // Tallest first: the tallest box sits on the first shelf, at the origin.
+  std::size_t tallest = 0;
+  for(std::size_t i = 0; i < boxes.size(); ++i)
+    if(boxes[i][3] - boxes[i][1] > boxes[tallest][3] - boxes[tallest][1])
+      tallest = i;
+  EXPECT_NEAR(boxes[tallest][0] + offsets[tallest][0], 0.0, 1e-12);
+  EXPECT_NEAR(boxes[tallest][1] + offsets[tallest][1], 0.0, 1e-12);
+}
+
+TEST(ChartPacking, RotationLaysTallChartsFlatWhenItHelps)
+{
+  // Ten wide and ten tall boxes: turning the tall ones makes all twenty alike.
+  std::vector<ICM::Chart_box> boxes;
+  for(int i = 0; i < 10; ++i)
+  {
+    boxes.push_back({0, 0, 5, 1});
+    boxes.push_back({0, 0, 1, 5});
+  }
+  ICM::Shelf_packing_options options;
+  const ICM::Chart_packing plain = ICM::shelf_pack_charts(boxes, options);
+  options.allow_rotation = true;
+  const ICM::Chart_packing turned = ICM::shelf_pack_charts(boxes, options);
+  expect_valid_packing(boxes, turned);
+  EXPECT_LE(std::max(turned.width, turned.height), std::max(plain.width, plain.height));
+  int rotated = 0;
+  for(const auto& placement : turned.placements)
+    rotated += placement.rotated;
+  EXPECT_TRUE(rotated == 0 || rotated == 10) << rotated;
+
+  // Equal squares never gain from a turn, so none is turned.
+  const std::vector<ICM::Chart_box> squares(9, ICM::Chart_box{0, 0, 1, 1});
+  for(const auto& placement : ICM::shelf_pack_charts(squares, options).placements)
+    EXPECT_FALSE(placement.rotated);
+}
+
+TEST(ChartPacking, PackChartsMovesPointSetsRigidly)
+{
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-3.0, 3.0);
+  std::vector<std::vector<Uv>> charts(12);
+  for(std::size_t c = 0; c < charts.size(); ++c)
+    for(int k = 0; k < 20; ++k)
+      // Charts of different sizes, all around the origin, many tall: they overlap at first.
+      charts[c].push_back({0.3 * (c + 1) * coordinate(random), coordinate(random) * (1 + c % 3)});
+  charts.push_back({}); // an empty chart stays empty and does not disturb the others
+  const std::vector<std::vector<Uv>> original = charts;
+
+  ICM::Shelf_packing_options options;
+  options.allow_rotation = true;
+  const ICM::Chart_packing packing = ICM::pack_charts(charts, options);
+
+  std::vector<ICM::Chart_box> before;
+  for(const auto& chart : original)
+    before.push_back(ICM::chart_bounding_box(chart));
+  expect_valid_packing(before, packing);
+  ASSERT_EQ(charts.size(), original.size());
+  EXPECT_TRUE(charts.back().empty());
+  for(std::size_t c = 0; c + 1 < charts.size(); ++c)
+  {
+    ASSERT_EQ(charts[c].size(), original[c].size());
+    for(std::size_t k = 1; k < charts[c].size(); ++k)
+    {
+      const double d_before = std::hypot(original[c][k][0] - original[c][0][0],
+                                         original[c][k][1] - original[c][0][1]);
+      const double d_after =
+        std::hypot(charts[c][k][0] - charts[c][0][0], charts[c][k][1] - charts[c][0][1]);
+      EXPECT_NEAR(d_after, d_before, 1e-12 * (1 + d_before));
+      // Orientation is kept too: a quarter turn is a rotation, not a reflection.
+      if(k >= 2)
+      {
+        EXPECT_EQ(signed_area(original[c][0], original[c][1], original[c][k]) > 0,
+                  signed_area(charts[c][0], charts[c][1], charts[c][k]) > 0);
+      }
+    }
+    const ICM::Chart_box now = ICM::chart_bounding_box(charts[c]);
+    const ICM::Chart_box expected = ICM::placed_box(before[c], packing.placements[c]);
+    for(int k = 0; k < 4; ++k)
+      EXPECT_NEAR(now[k], expected[k], 1e-12 * (1 + std::abs(expected[k])));
+  }
+}
+
+TEST(ChartPacking, EdgeCases)
+{
+  EXPECT_TRUE(ICM::shelf_pack({}).empty());
+  const ICM::Chart_packing one = ICM::shelf_pack_charts({{2, 3, 4, 7}});
+  EXPECT_EQ(one.placements[0].offset, (Uv{-2.0, -3.0}));
+  EXPECT_DOUBLE_EQ(one.width, 2.0);
+  EXPECT_DOUBLE_EQ(one.height, 4.0);
+
+  // Single-point charts still end up apart.
+  const std::vector<ICM::Chart_box> points(4, ICM::Chart_box{1, 1, 1, 1});
+  const ICM::Chart_packing packed_points = ICM::shelf_pack_charts(points);
+  EXPECT_GT(packed_points.gap, 0.0);
+  expect_valid_packing(points, packed_points);
+
+  EXPECT_THROW(ICM::shelf_pack({{0, 0, std::nan(""), 1}}), std::invalid_argument);
+  EXPECT_THROW(ICM::shelf_pack({{0, 0, HUGE_VAL, 1}}), std::invalid_argument);
+}
+
+// Two copies of a disk, laid out on top of each other in one UV map, overlap; packed, they
+// do not: the two headers together check an atlas.
+TEST(ChartPacking, PackedChartsHaveNoBorderOverlap)
+{
+  const Polar_disk disk = polar_disk(4, 16);
+  const int nv = static_cast<int>(disk.plane.size());
+  std::vector<Uv> plane = disk.plane;
+  plane.insert(plane.end(), disk.plane.begin(), disk.plane.end());
+  std::vector<std::array<int, 3>> faces = disk.faces;
+  for(const auto& f : disk.faces)
+    faces.push_back({f[0] + nv, f[1] + nv, f[2] + nv});
+  const Mesh_index index = make_index(plane, faces);
+  ASSERT_EQ(index.number_of_boundary_loops(), 2);
+
+  std::vector<Uv> uv = plane;
+  uv.resize(nv);
+  std::vector<std::vector<Uv>> charts{uv, uv};
+  for(Uv& p : charts[1])
+    p = {0.5 * p[0] + 0.3, 0.5 * p[1]}; // the second chart smaller, inside the first
+  std::vector<Uv> stacked = charts[0];
+  stacked.insert(stacked.end(), charts[1].begin(), charts[1].end());
+  EXPECT_TRUE(ICM::count_border_overlaps(index, stacked).empty());  // nested: borders apart
+  EXPECT_FALSE(ICM::overlapping_face_pairs(index, stacked).empty()); // ... but faces overlap
+
+  ICM::pack_charts(charts);
+  std::vector<Uv> packed = charts[0];
+  packed.insert(packed.end(), charts[1].begin(), charts[1].end());
+  EXPECT_TRUE(ICM::count_border_overlaps(index, packed).empty());
+  EXPECT_TRUE(ICM::overlapping_face_pairs(index, packed).empty());
+
+  std::vector<Uv> shifted = stacked; // half way across: the borders now cross
+  for(int v = nv; v < 2 * nv; ++v)
+    shifted[v][0] += 3.0;
+  EXPECT_GT(ICM::count_border_overlaps(index, shifted).crossing_pairs, 0);
+}

@@ -1,0 +1,273 @@
+// The one call for any mesh, `ICM::parameterize`, on every topology: closed genus 0 (cones
+// and a seam tree), torus (no cone needed), genus 2 and 3 (homology generators), several
+// boundaries, several components; user cones; the refusals; the result read back through a
+// `CGAL::Seam_mesh` and on `Polyhedron_3`.
+
+#include <ICM/Distortion.h>
+#include <ICM/parameterize.h>
+
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Seam_mesh.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/io.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point_2 = Kernel::Point_2;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+
+Mesh read(const std::string& path)
+{
+  Mesh mesh;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
+  return mesh;
+}
+
+struct Result
+{
+  ICM::Surface_parameterization_report report;
+  ICM::Distortion_measures measures;
+  std::vector<Mesh::Edge_index> seams;
+};
+
+/// Parameterizes and checks what every result must satisfy: success, every chart without
+/// flipped faces, crossing borders or unequal seam sides, every corner with a finite UV.
+Result run(Mesh& mesh, const std::string& what, const ICM::Surface_parameterization_options& options = {},
+           const std::map<Mesh::Vertex_index, double>& cones = {})
+{
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:test_uv", Point_2(NAN, NAN)).first;
+  Result r;
+  r.report = ICM::parameterize(mesh, uv, options, cones, &r.seams);
+  EXPECT_EQ(r.report.status, CGAL::Surface_mesh_parameterization::OK) << what << ": " << r.report.message;
+  if(r.report.status != CGAL::Surface_mesh_parameterization::OK)
+    return r;
+  for(const ICM::Chart_report& c : r.report.charts)
+  {
+    EXPECT_EQ(c.flipped_faces, 0) << what;
+    EXPECT_LT(c.seam_length_error, 1e-9) << what;
+    EXPECT_LT(c.max_curvature_error, 1e-9) << what;
+  }
+  for(Mesh::Halfedge_index h : halfedges(mesh))
+  {
+    if(!is_border(h, mesh))
+    {
+      EXPECT_TRUE(std::isfinite(uv[h].x()) && std::isfinite(uv[h].y())) << what;
+    }
+  }
+  r.measures = ICM::measure_distortion_corner_uv(mesh, uv);
+  EXPECT_EQ(r.measures.flipped_faces, 0u) << what;
+  return r;
+}
+
+/// Sum of the cone curvatures plus the border's: Gauss-Bonnet over the whole surface.
+double total_cone_curvature(const ICM::Chart_report& c)
+{
+  double sum = 0;
+  for(double k : c.cone_curvatures)
+    sum += k;
+  return sum;
+}
+
+TEST(Surfaces, ClosedSphereIsCutThroughItsCones)
+{
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  const Result r = run(mesh, "sphere966");
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  EXPECT_EQ(c.genus, 0);
+  EXPECT_GE(c.cones.size(), 2u);
+  // No border: all of 2 pi chi = 4 pi sits on the cones.
+  EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
+  EXPECT_EQ(c.homology_generators, 0);
+  EXPECT_GT(c.seam_edges, 0);
+  EXPECT_EQ(static_cast<int>(r.seams.size()), c.seam_edges);
+  EXPECT_EQ(c.overlapping_border_edges, 0);
+  // Measured: 6 cones, qc mean 1.067.
+  EXPECT_LT(r.measures.qc_mean, 1.2);
+}
+
+TEST(Surfaces, TorusNeedsNoConeAndTwoGenerators)
+{
+  Mesh mesh = read(icm_test::data_path("rotor.off"));
+  ICM::Surface_parameterization_options options;
+  options.automatic_cones = false;
+  const Result r = run(mesh, "rotor", options);
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  EXPECT_EQ(c.genus, 1);
+  EXPECT_EQ(c.homology_generators, 2);
+  // No cone: K^{-1}(0) is flat everywhere (one vertex pinned, flat by Gauss-Bonnet), and the
+  // cut is the two generators alone.
+  EXPECT_TRUE(c.cones.empty());
+  EXPECT_GT(c.seam_edges, 0);
+}
+
+TEST(Surfaces, GenusTwoAndThreeGetTheirGenerators)
+{
+  std::vector<std::pair<std::string, int>> cases = {{icm_test::data_path("eight.off"), 2}};
+  if(icm_test::shared_dir_exists())
+    cases.push_back({icm_test::shared_path("elephant.off"), 3});
+  for(const auto& [path, genus] : cases)
+  {
+    Mesh mesh = read(path);
+    const Result r = run(mesh, path);
+    ASSERT_EQ(r.report.charts.size(), 1u);
+    const ICM::Chart_report& c = r.report.charts[0];
+    EXPECT_EQ(c.genus, genus) << path;
+    EXPECT_EQ(c.homology_generators, 2 * genus) << path;
+    EXPECT_NEAR(total_cone_curvature(c), 2 * M_PI * (2 - 2 * genus), 1e-8) << path;
+  }
+}
+
+TEST(Surfaces, SeveralBoundariesAreJoinedIntoOneDisk)
+{
+  Mesh mesh = read(icm_test::data_path("pig.off"));
+  const Result r = run(mesh, "pig");
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  EXPECT_EQ(c.boundary_loops, 7);
+  EXPECT_GE(c.seam_edges, 6); // at least one path per extra loop
+  EXPECT_EQ(c.overlapping_border_edges, 0);
+}
+
+TEST(Surfaces, SeveralComponentsArePackedSideBySide)
+{
+  // A sphere and a disk in one mesh, both at their 3D scale, boxes apart.
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  Mesh disk = read(icm_test::data_path("nefertiti.off"));
+  CGAL::copy_face_graph(disk, mesh);
+  const Result r = run(mesh, "sphere + nefertiti");
+  ASSERT_EQ(r.report.charts.size(), 2u);
+  auto uv = mesh.property_map<Mesh::Halfedge_index, Point_2>("h:test_uv").first;
+  // The two charts' UV boxes do not meet.
+  std::vector<CGAL::Bbox_2> boxes(2);
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:cc").first;
+  CGAL::Polygon_mesh_processing::connected_components(mesh, component);
+  for(Mesh::Face_index f : faces(mesh))
+    for(Mesh::Halfedge_index h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+      boxes[component[f]] += uv[h].bbox();
+  EXPECT_FALSE(CGAL::do_overlap(boxes[0], boxes[1]));
+  EXPECT_EQ(r.report.charts[1].cones.size() + r.report.charts[0].cones.size() >= 2, true);
+}
+
+TEST(Surfaces, UserConesWithPrescribedAndFreeAngles)
+{
+  // Six cones of 270 degrees at the extremes of the sphere's axes carry 6 x pi/2 = 3 pi...
+  // not 4 pi: Gauss-Bonnet refuses them. With one more cone whose angle is free, the
+  // optimum gives it the missing pi, and every prescribed angle is met.
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  std::map<Mesh::Vertex_index, double> cones;
+  for(int axis = 0; axis < 3; ++axis)
+    for(int sign : {-1, 1})
+    {
+      Mesh::Vertex_index best;
+      double extreme = -HUGE_VAL;
+      for(Mesh::Vertex_index v : vertices(mesh))
+        if(sign * mesh.point(v)[axis] > extreme)
+        {
+          extreme = sign * mesh.point(v)[axis];
+          best = v;
+        }
+      cones[best] = M_PI / 2;
+    }
+  ASSERT_EQ(cones.size(), 6u);
+  ICM::Surface_parameterization_options options;
+  options.automatic_cones = false;
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  const auto refused = ICM::parameterize(mesh, uv, options, cones);
+  EXPECT_NE(refused.status, CGAL::Surface_mesh_parameterization::OK);
+  EXPECT_NE(refused.message.find("Gauss-Bonnet"), std::string::npos) << refused.message;
+
+  Mesh::Vertex_index free_cone(0);
+  while(cones.count(free_cone))
+    free_cone = Mesh::Vertex_index(std::size_t(free_cone) + 1);
+  cones[free_cone] = std::nan("");
+  const Result r = run(mesh, "user cones", options, cones);
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  ASSERT_EQ(c.cones.size(), 7u);
+  int prescribed_met = 0;
+  for(double k : c.cone_curvatures)
+    prescribed_met += std::abs(k - M_PI / 2) < 1e-8;
+  EXPECT_EQ(prescribed_met, 6);
+  EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
+}
+
+TEST(Surfaces, BadConesAreRefusedWithAReason)
+{
+  Mesh disk = read(icm_test::data_path("nefertiti.off"));
+  auto uv = disk.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  Mesh::Vertex_index border;
+  for(Mesh::Vertex_index v : vertices(disk))
+    if(is_border(v, disk))
+      border = v;
+  auto r = ICM::parameterize(disk, uv, {}, {{border, 0.5}});
+  EXPECT_EQ(r.status, CGAL::Surface_mesh_parameterization::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(r.message.find("boundary vertex"), std::string::npos) << r.message;
+
+  Mesh sphere = read(icm_test::data_path("sphere966.off"));
+  auto uv2 = sphere.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  r = ICM::parameterize(sphere, uv2, {}, {{Mesh::Vertex_index(3), 2 * M_PI}}); // angle 0
+  EXPECT_EQ(r.status, CGAL::Surface_mesh_parameterization::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(r.message.find("positive"), std::string::npos) << r.message;
+
+  ICM::Surface_parameterization_options no_cones;
+  no_cones.automatic_cones = false;
+  r = ICM::parameterize(sphere, uv2, no_cones);
+  EXPECT_NE(r.status, CGAL::Surface_mesh_parameterization::OK);
+  EXPECT_NE(r.message.find("at least two cones"), std::string::npos) << r.message;
+
+  Mesh empty;
+  auto uv3 = empty.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  EXPECT_EQ(ICM::parameterize(empty, uv3).status, CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH);
+}
+
+TEST(Surfaces, ResultReadsBackThroughASeamMesh)
+{
+  // The halfedge UV map and the seam edges are CGAL's own representation: a Seam_mesh over
+  // the mesh with those seams sees one UV per seam-mesh vertex, and its distortion equals
+  // the corner measure.
+  Mesh mesh = read(icm_test::data_path("eight.off"));
+  const Result r = run(mesh, "eight");
+  auto uv = mesh.property_map<Mesh::Halfedge_index, Point_2>("h:test_uv").first;
+  auto seam_edge = mesh.add_property_map<Mesh::Edge_index, bool>("e:seam", false).first;
+  auto seam_vertex = mesh.add_property_map<Mesh::Vertex_index, bool>("v:seam", false).first;
+  using Seam_mesh = CGAL::Seam_mesh<Mesh, decltype(seam_edge), decltype(seam_vertex)>;
+  Seam_mesh seam_mesh(mesh, seam_edge, seam_vertex);
+  for(Mesh::Edge_index e : r.seams)
+    seam_mesh.add_seam(source(e, mesh), target(e, mesh));
+  EXPECT_EQ(seam_mesh.number_of_seam_edges(), r.seams.size());
+  const ICM::Distortion_measures through_seams = ICM::measure_distortion(seam_mesh, uv);
+  EXPECT_EQ(through_seams.flipped_faces, 0u);
+  EXPECT_NEAR(through_seams.qc_mean, r.measures.qc_mean, 1e-12);
+  EXPECT_NEAR(through_seams.log_area_distortion, r.measures.log_area_distortion, 1e-12);
+}
+
+TEST(Surfaces, PolyhedronTakesTheSameCall)
+{
+  Polyhedron poly;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(icm_test::data_path("rotor.off"), poly));
+  std::map<Polyhedron::Halfedge_handle, Point_2> corners;
+  auto uv = boost::make_assoc_property_map(corners);
+  const auto report = ICM::parameterize(poly, uv);
+  ASSERT_EQ(report.status, CGAL::Surface_mesh_parameterization::OK) << report.message;
+  ASSERT_EQ(report.charts.size(), 1u);
+  EXPECT_EQ(report.charts[0].homology_generators, 2);
+  EXPECT_EQ(report.charts[0].flipped_faces, 0);
+  EXPECT_EQ(ICM::measure_distortion_corner_uv(poly, uv).flipped_faces, 0u);
+}
+
+} // namespace
