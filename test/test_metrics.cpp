@@ -22,7 +22,6 @@
 #include "test_support.h"
 
 #include <cmath>
-#include <random>
 #include <string>
 
 namespace {
@@ -31,27 +30,7 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using ICM::internal::Mesh_index;
 
-Mesh_index index_of(const std::string& path)
-{
-  Mesh mesh;
-  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
-  Mesh_index index;
-  std::vector<Mesh::Vertex_index> vertices;
-  const ICM::internal::Index_status status =
-    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
-  EXPECT_TRUE(status.ok()) << status.message;
-  return index;
-}
-
-Eigen::VectorXd perturbed(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd u = u0;
-  for(int i = 0; i < u.size(); ++i)
-    u[i] += d(rng);
-  return u;
-}
+using icm_test::index_of;
 
 /// The dense Delta (nothing pinned) of the per-edge weights.
 Eigen::MatrixXd dense_laplacian(const Mesh_index& index, const std::vector<double>& w)
@@ -92,7 +71,7 @@ TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDiffe
     ICM::Curvature_map<TypeParam> curvature(index, metric);
     // Small enough that every face of every metric stays a triangle (three_peaks has
     // slivers that 0.05 already breaks).
-    const Eigen::VectorXd u = perturbed(metric.u0, 0.01, 11);
+    const Eigen::VectorXd u = icm_test::random_perturbation(metric.u0, 0.01, 11);
     Eigen::VectorXd k;
     std::vector<double> w;
     ASSERT_EQ(curvature.evaluate(u, k, &w), 0) << name;

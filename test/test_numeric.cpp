@@ -26,18 +26,7 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using ICM::internal::Mesh_index;
 
-Mesh_index index_file(const std::string& name)
-{
-  Mesh mesh;
-  const std::string path = icm_test::data_path(name);
-  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
-  Mesh_index index;
-  std::vector<Mesh::Vertex_index> vertices;
-  const ICM::internal::Index_status status =
-    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
-  EXPECT_TRUE(status.ok()) << status.message;
-  return index;
-}
+Mesh_index index_file(const std::string& name) { return icm_test::index_of(icm_test::data_path(name)); }
 
 /// A planar grid of equilateral triangles: every circle packing with tangent circles of
 /// radius l/2 reproduces it exactly.
@@ -58,15 +47,7 @@ Mesh_index equilateral_grid(int n)
   return index;
 }
 
-Eigen::VectorXd random_perturbation(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-amplitude, amplitude);
-  Eigen::VectorXd u = u0;
-  for(int i = 0; i < u.size(); ++i)
-    u[i] += d(rng);
-  return u;
-}
+using icm_test::random_perturbation;
 
 std::vector<char> interior_of(const Mesh_index& index)
 {

@@ -4,11 +4,19 @@
 #ifndef ICM_TEST_SUPPORT_H
 #define ICM_TEST_SUPPORT_H
 
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <Eigen/Core>
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -26,6 +34,30 @@ inline std::string data_path(const std::string& name) { return std::string(ICM_T
 /// A mesh of `../shared/data/meshes`; tests that need it skip when it is missing.
 inline std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
 inline bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+
+/// The indexed first component of a mesh file.
+inline ICM::internal::Mesh_index index_of(const std::string& path)
+{
+  CGAL::Surface_mesh<CGAL::Simple_cartesian<double>::Point_3> mesh;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
+  ICM::internal::Mesh_index index;
+  std::vector<decltype(mesh)::Vertex_index> vertices;
+  const ICM::internal::Index_status status =
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
+  EXPECT_TRUE(status.ok()) << status.message;
+  return index;
+}
+
+/// `u0` plus uniform noise in [-amplitude, amplitude], reproducible from `seed`.
+inline Eigen::VectorXd random_perturbation(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  Eigen::VectorXd u = u0;
+  for(int i = 0; i < u.size(); ++i)
+    u[i] += d(rng);
+  return u;
+}
 
 inline std::string read_text(const fs::path& path)
 {
