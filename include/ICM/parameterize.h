@@ -87,14 +87,6 @@ struct Surface_parameterization_report
   std::vector<Chart_report> charts;    ///< one per connected component
   double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
          seconds_total = 0;
-
-  int total(int Chart_report::*field) const
-  {
-    int sum = 0;
-    for(const Chart_report& c : charts)
-      sum += c.*field;
-    return sum;
-  }
 };
 
 namespace internal {
