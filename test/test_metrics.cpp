@@ -32,21 +32,7 @@ using ICM::internal::Mesh_index;
 
 using icm_test::index_of;
 
-/// The dense Delta (nothing pinned) of the per-edge weights.
-Eigen::MatrixXd dense_laplacian(const Mesh_index& index, const std::vector<double>& w)
-{
-  const int n = index.number_of_vertices();
-  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
-  for(int e = 0; e < index.number_of_edges(); ++e)
-  {
-    const int i = index.edges[e][0], j = index.edges[e][1];
-    delta(i, j) -= w[e];
-    delta(j, i) -= w[e];
-    delta(i, i) += w[e];
-    delta(j, j) += w[e];
-  }
-  return delta;
-}
+using icm_test::dense_laplacian;
 
 template <class Metric>
 class MetricConcept : public testing::Test

@@ -179,15 +179,7 @@ TEST(CurvatureMap, LaplacianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences
 
   // The full Delta (nothing pinned) as a dense matrix.
   const int n = index.number_of_vertices();
-  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
-  for(int e = 0; e < index.number_of_edges(); ++e)
-  {
-    const int i = index.edges[e][0], j = index.edges[e][1];
-    delta(i, j) -= w[e];
-    delta(j, i) -= w[e];
-    delta(i, i) += w[e];
-    delta(j, j) += w[e];
-  }
+  const Eigen::MatrixXd delta = icm_test::dense_laplacian(index, w);
   EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
   EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-12);
 

@@ -19,6 +19,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <system_error>
 
 #ifndef _WIN32
@@ -57,6 +58,22 @@ inline Eigen::VectorXd random_perturbation(const Eigen::VectorXd& u0, double amp
   for(int i = 0; i < u.size(); ++i)
     u[i] += d(rng);
   return u;
+}
+
+/// The dense Delta (nothing pinned) of the per-edge weights.
+inline Eigen::MatrixXd dense_laplacian(const ICM::internal::Mesh_index& index, const std::vector<double>& w)
+{
+  const int n = index.number_of_vertices();
+  Eigen::MatrixXd delta = Eigen::MatrixXd::Zero(n, n);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int i = index.edges[e][0], j = index.edges[e][1];
+    delta(i, j) -= w[e];
+    delta(j, i) -= w[e];
+    delta(i, i) += w[e];
+    delta(j, j) += w[e];
+  }
+  return delta;
 }
 
 inline std::string read_text(const fs::path& path)

@@ -127,7 +127,8 @@ struct Surface_optimum
     Inverse_curvature_map<Solver, Metric> solver(index, metric, is_free);
     u = metric.u0;
     newton = solver.solve(target, u, options);
-    solver.curvature_map().evaluate(u, k);
+    // The solver holds the curvature, lengths and radii of its last accepted u.
+    k = solver.curvature();
     lengths = solver.curvature_map().lengths();
     angles = solver.curvature_map().face_angles();
   }

@@ -175,6 +175,23 @@ std::array<double, 2> to_array_2(const Point_2& p)
   return {{CGAL::to_double(p.x()), CGAL::to_double(p.y())}};
 }
 
+/// The 3D position of every vertex, in `vertices(mesh)` order, into `out.positions`; returns
+/// each vertex's index there.
+template <class TriangleMesh>
+std::unordered_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, int>
+copy_positions(const TriangleMesh& mesh, IO::Uv_mesh& out)
+{
+  const auto vpm = get(CGAL::vertex_point, mesh);
+  std::unordered_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, int> index;
+  index.reserve(num_vertices(mesh));
+  out.positions.reserve(num_vertices(mesh));
+  for(auto v : vertices(mesh)) {
+    index.emplace(v, static_cast<int>(out.positions.size()));
+    out.positions.push_back(to_array_3(get(vpm, v)));
+  }
+  return index;
+}
+
 } // namespace internal
 
 namespace IO {
@@ -195,18 +212,11 @@ Uv_mesh make_uv_mesh(const TriangleMesh& mesh, VertexUVMap uvmap)
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
 
-  const auto vpm = get(CGAL::vertex_point, mesh);
   Uv_mesh out;
-  out.positions.reserve(num_vertices(mesh));
+  const std::unordered_map<vertex_descriptor, int> index = internal::copy_positions(mesh, out);
   out.uvs.reserve(num_vertices(mesh));
-
-  std::unordered_map<vertex_descriptor, int> index;
-  index.reserve(num_vertices(mesh));
-  for(vertex_descriptor v : vertices(mesh)) {
-    index.emplace(v, static_cast<int>(out.positions.size()));
-    out.positions.push_back(internal::to_array_3(get(vpm, v)));
+  for(vertex_descriptor v : vertices(mesh))
     out.uvs.push_back(internal::to_array_2(get(uvmap, v)));
-  }
 
   out.face_positions.reserve(num_faces(mesh));
   for(face_descriptor f : faces(mesh)) {
@@ -235,13 +245,8 @@ Uv_mesh make_uv_mesh_from_corners(const TriangleMesh& mesh, HalfedgeUVMap uvmap)
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
-  const auto vpm = get(CGAL::vertex_point, mesh);
   Uv_mesh out;
-  std::unordered_map<vertex_descriptor, int> index;
-  for(vertex_descriptor v : vertices(mesh)) {
-    index.emplace(v, static_cast<int>(out.positions.size()));
-    out.positions.push_back(internal::to_array_3(get(vpm, v)));
-  }
+  const std::unordered_map<vertex_descriptor, int> index = internal::copy_positions(mesh, out);
   // Per vertex, the vt indices it has so far (a handful at most: one per seam side).
   std::vector<std::vector<int> > vts(out.positions.size());
   for(face_descriptor f : faces(mesh)) {
@@ -293,16 +298,8 @@ Uv_mesh make_uv_mesh(const CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>& seam
   using TM_vertex_descriptor = typename boost::graph_traits<TM>::vertex_descriptor;
 
   const TM& tm = seam_mesh.mesh();
-  const auto vpm = get(CGAL::vertex_point, tm);
   Uv_mesh out;
-
-  std::unordered_map<TM_vertex_descriptor, int> position_index;
-  position_index.reserve(num_vertices(tm));
-  out.positions.reserve(num_vertices(tm));
-  for(TM_vertex_descriptor v : vertices(tm)) {
-    position_index.emplace(v, static_cast<int>(out.positions.size()));
-    out.positions.push_back(internal::to_array_3(get(vpm, v)));
-  }
+  const std::unordered_map<TM_vertex_descriptor, int> position_index = internal::copy_positions(tm, out);
 
   // Seam_mesh::vertex_descriptor is a canonical halfedge of the underlying mesh pointing to
   // the vertex; it is what target(h, seam_mesh) returns, so it is a sound hash key.
