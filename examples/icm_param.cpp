@@ -3,7 +3,7 @@
 // OBJ (a vt per corner side of every seam), optionally an SVG of the layout and a JSON line.
 //
 //   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json]
-//             [--metric vertex-scaling|inversive-distance|circle-packing]
+//             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]...
 //
 // On any failure it prints one line on stderr naming the reason, exits non-zero and writes
@@ -54,7 +54,7 @@ struct Arguments
 
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
-  "[--metric vertex-scaling|inversive-distance|circle-packing] "
+  "[--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing] "
   "[--cones auto|N] [--cone VERTEX:DEGREES]...\n";
 
 int fail(const std::string& reason, int code = 1)
@@ -127,12 +127,13 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
     {
       if(!value(args.metric))
         return false;
-      if(args.metric != ICM::Vertex_scaling_metric::name &&
+      if(args.metric != ICM::Intrinsic_delaunay_metric::name &&
+         args.metric != ICM::Vertex_scaling_metric::name &&
          args.metric != ICM::Inversive_distance_metric::name &&
          args.metric != ICM::Circle_packing_metric::name)
       {
         error = "unknown metric '" + args.metric +
-                "' (vertex-scaling, inversive-distance or circle-packing)";
+                "' (intrinsic-delaunay, vertex-scaling, inversive-distance or circle-packing)";
         return false;
       }
     }
@@ -248,7 +249,8 @@ int main(int argc, char** argv)
   };
   report = args.metric == ICM::Circle_packing_metric::name      ? run(ICM::Circle_packing_metric())
            : args.metric == ICM::Inversive_distance_metric::name ? run(ICM::Inversive_distance_metric())
-                                                                 : run(ICM::Vertex_scaling_metric());
+           : args.metric == ICM::Vertex_scaling_metric::name     ? run(ICM::Vertex_scaling_metric())
+                                                                 : run(ICM::Intrinsic_delaunay_metric());
   if(report.status != SMP::OK)
     return fail(std::string(ICM::error_message(report.status)) + ": " + report.message);
 

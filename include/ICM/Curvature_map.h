@@ -6,6 +6,10 @@
 // `face_geometry(edges, radii, lengths)`, the face's angles, weights and validity, because
 // only the metric knows how to compute them without cancellation when the radii of one face
 // differ by many orders of magnitude.
+//
+// A metric may own its triangulation (`Intrinsic_delaunay_metric`): it then provides
+// `triangulation()` and `make_delaunay(g)`, the curvature map flips it at every u before
+// measuring, and `mesh_index()` is that triangulation instead of the mesh's.
 
 #ifndef ICM_CURVATURE_MAP_H
 #define ICM_CURVATURE_MAP_H
@@ -18,12 +22,28 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace ICM {
+namespace internal {
 
-/// Evaluates K(u) and the dynamic Laplacian weights on a fixed mesh and metric.
-/// Holds per-edge length storage so repeated evaluations allocate nothing.
+/// Whether a metric owns a triangulation that it flips with u (see the header comment).
+template <class Metric, class = void>
+struct Has_intrinsic_triangulation : std::false_type
+{};
+template <class Metric>
+struct Has_intrinsic_triangulation<
+  Metric, std::void_t<decltype(std::declval<Metric&>().make_delaunay(std::declval<const std::vector<double>&>()))>>
+  : std::true_type
+{};
+
+} // namespace internal
+
+/// Evaluates K(u) and the dynamic Laplacian weights for a metric. Holds its own copy of the
+/// metric (whose triangulation may change with u) and per-edge length storage, so repeated
+/// evaluations allocate nothing.
 template <class Metric = Circle_packing_metric>
 class Curvature_map
 {
@@ -33,16 +53,38 @@ public:
       lengths_(index.number_of_edges())
   {}
 
-  const internal::Mesh_index& mesh_index() const { return index_; }
+  static constexpr bool has_intrinsic_triangulation = internal::Has_intrinsic_triangulation<Metric>::value;
+
+  /// The triangulation the metric lives on: the mesh's, or the metric's own as of the last
+  /// `evaluate` or `compute_lengths`.
+  const internal::Mesh_index& mesh_index() const
+  {
+    if constexpr(has_intrinsic_triangulation)
+      return metric_.triangulation();
+    else
+      return index_;
+  }
+  /// Changes whenever `mesh_index()` changes its edges (always 0 for a fixed triangulation).
+  long triangulation_version() const
+  {
+    if constexpr(has_intrinsic_triangulation)
+      return metric_.flips();
+    else
+      return 0;
+  }
   const Metric& metric() const { return metric_; }
 
-  /// Edge lengths of the metric at `u`; also kept for `lengths()`.
+  /// Edge lengths of the metric at `u` (flipping its triangulation first if it has one);
+  /// also kept for `lengths()`.
   const std::vector<double>& compute_lengths(const Eigen::VectorXd& u)
   {
     for(int v = 0; v < index_.number_of_vertices(); ++v)
       radii_[v] = std::exp(u[v]);
-    for(int e = 0; e < index_.number_of_edges(); ++e)
-      lengths_[e] = metric_.length(e, radii_[index_.edges[e][0]], radii_[index_.edges[e][1]]);
+    if constexpr(has_intrinsic_triangulation)
+      metric_.make_delaunay(radii_);
+    const internal::Mesh_index& t = mesh_index();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+      lengths_[e] = metric_.length(e, radii_[t.edges[e][0]], radii_[t.edges[e][1]]);
     return lengths_;
   }
   const std::vector<double>& lengths() const { return lengths_; }
@@ -55,20 +97,21 @@ public:
   {
     int invalid_faces = 0;
     compute_lengths(u);
-    const int nv = index_.number_of_vertices();
+    const internal::Mesh_index& t = mesh_index();
+    const int nv = t.number_of_vertices();
     k.resize(nv);
     for(int v = 0; v < nv; ++v)
-      k[v] = index_.is_boundary_vertex[v] ? M_PI : 2.0 * M_PI;
+      k[v] = t.is_boundary_vertex[v] ? M_PI : 2.0 * M_PI;
     if(weights)
-      weights->assign(index_.number_of_edges(), 0.0);
+      weights->assign(t.number_of_edges(), 0.0);
 
-    for(int f = 0; f < index_.number_of_faces(); ++f)
+    for(int f = 0; f < t.number_of_faces(); ++f)
     {
-      const std::array<int, 3>& e = index_.face_edges[f];
+      const std::array<int, 3>& e = t.face_edges[f];
       const Face_geometry face = face_geometry(f);
       invalid_faces += !face.valid;
       for(int c = 0; c < 3; ++c)
-        k[index_.faces[f][c]] -= face.angles.angle[c];
+        k[t.faces[f][c]] -= face.angles.angle[c];
       if(weights)
         for(int c = 0; c < 3; ++c)
           (*weights)[e[c]] += face.weight[c];
@@ -88,14 +131,14 @@ public:
 private:
   Face_geometry face_geometry(int f) const
   {
-    const std::array<int, 3>& v = index_.faces[f];
-    const std::array<int, 3>& e = index_.face_edges[f];
+    const std::array<int, 3>& v = mesh_index().faces[f];
+    const std::array<int, 3>& e = mesh_index().face_edges[f];
     return metric_.face_geometry(e, {radii_[v[0]], radii_[v[1]], radii_[v[2]]},
                                  {lengths_[e[0]], lengths_[e[1]], lengths_[e[2]]});
   }
 
   const internal::Mesh_index& index_;
-  const Metric& metric_;
+  Metric metric_;
   std::vector<double> radii_;
   std::vector<double> lengths_;
 };

@@ -711,34 +711,100 @@ inline Cut_mesh cut_mesh(const internal::Mesh_index& index, const std::vector<ch
   cut.disk.points.reserve(wedges.surface_vertex.size());
   for(int v : wedges.surface_vertex)
     cut.disk.points.push_back(index.points[v]);
-  const internal::Index_status built = internal::build_connectivity(cut.disk);
+  // The disk's edges come from the surface's, not from their endpoints (an intrinsic
+  // triangulation may join two vertices by two edges): an edge off the cut is one disk edge,
+  // a seam edge one per side.
+  const int ne = index.number_of_edges(), nf = index.number_of_faces();
+  cut.disk_edges.assign(ne, {-1, -1});
+  for(int e = 0; e < ne; ++e)
+    for(int side = 0; side < (is_seam[e] ? 2 : 1); ++side)
+    {
+      cut.disk_edges[e][side] = static_cast<int>(cut.surface_edge.size());
+      cut.surface_edge.push_back(e);
+    }
+  const int nd = static_cast<int>(cut.surface_edge.size());
+  cut.disk.edges.assign(nd, {-1, -1});
+  cut.disk.edge_faces.assign(nd, {-1, -1});
+  cut.disk.face_edges.assign(nf, {-1, -1, -1});
+  for(int f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const int e = index.face_edges[f][c];
+      const int side = index.edge_faces[e][0] == f ? 0 : 1;
+      const int d = cut.disk_edges[e][is_seam[e] ? side : 0];
+      cut.disk.face_edges[f][c] = d;
+      const int a = cut.disk.faces[f][(c + 1) % 3], b = cut.disk.faces[f][(c + 2) % 3];
+      cut.disk.edges[d] = {std::min(a, b), std::max(a, b)};
+      cut.disk.edge_faces[d][is_seam[e] ? 0 : side] = f;
+    }
+  const internal::Index_status built = internal::build_border(cut.disk);
   if(!built.ok())
   {
     cut.status = {false, "the cut surface is not a manifold: " + built.message};
     return cut;
   }
-  const int seams = static_cast<int>(std::count(is_seam.begin(), is_seam.end(), char(1)));
-  if(cut.disk.number_of_edges() != index.number_of_edges() + seams || !cut.disk.is_disk())
+  if(!cut.disk.is_disk())
   {
-    cut.status = {false, "the cut surface is not a disk: " + internal::describe_topology(cut.disk) + ", " +
-                           plural(cut.disk.number_of_edges(), "edge") + " for " +
-                           std::to_string(index.number_of_edges()) + " + " +
-                           std::to_string(seams) + " expected"};
+    cut.status = {false, "the cut surface is not a disk: " + internal::describe_topology(cut.disk)};
     return cut;
   }
-
-  cut.surface_edge.assign(cut.disk.number_of_edges(), -1);
-  cut.disk_edges.assign(index.number_of_edges(), {-1, -1});
-  for(int f = 0; f < index.number_of_faces(); ++f)
-    for(int c = 0; c < 3; ++c)
-    {
-      const int e = index.face_edges[f][c], d = cut.disk.face_edges[f][c];
-      cut.surface_edge[d] = e;
-      const int side = index.edge_faces[e][0] == f ? 0 : 1;
-      if(side == 0 || is_seam[e])
-        cut.disk_edges[e][side] = d;
-    }
   return cut;
+}
+
+/// The key of the wedge of corner `c` of face `f`: its vertex, and the seam or border edge
+/// that ends the wedge turning counter-clockwise around it (none for an uncut vertex). Two
+/// triangulations of one surface with the same vertices, border and seam edges (the mesh
+/// and an intrinsic triangulation of it) give their wedges the same keys.
+inline long long wedge_key(const internal::Mesh_index& index, const std::vector<char>& is_seam,
+                           int f, int c)
+{
+  const int v = index.faces[f][c];
+  const long long base = static_cast<long long>(v) * (index.number_of_edges() + 1);
+  for(int g = f, k = c, steps = 0; steps < index.number_of_faces(); ++steps)
+  {
+    // In face (v, x, y), counter-clockwise, turning past y crosses edge vy.
+    const int e = index.face_edges[g][(k + 1) % 3];
+    if(is_seam[e] || index.edge_faces[e][1] < 0)
+      return base + e + 1;
+    g = index.edge_faces[e][0] == g ? index.edge_faces[e][1] : index.edge_faces[e][0];
+    k = internal::cutting::corner_of_vertex(index, g, v);
+    if(g == f)
+      break;
+  }
+  return base;
+}
+
+/// For each wedge (disk vertex) of `cut`, the wedge of `other_cut` with the same key, where
+/// `cut` cuts `index` and `other_cut` cuts `other` along the same seam edges; empty when a
+/// wedge has no partner.
+inline std::vector<int> match_wedges(const internal::Mesh_index& index, const Cut_mesh& cut,
+                                     const internal::Mesh_index& other, const Cut_mesh& other_cut,
+                                     const std::vector<char>& is_seam)
+{
+  auto keys = [&](const internal::Mesh_index& surface, const Cut_mesh& c) {
+    std::vector<long long> key(c.disk.number_of_vertices(), -1);
+    for(int f = 0; f < c.disk.number_of_faces(); ++f)
+      for(int k = 0; k < 3; ++k)
+        if(key[c.disk.faces[f][k]] < 0)
+          key[c.disk.faces[f][k]] = wedge_key(surface, is_seam, f, k);
+    return key;
+  };
+  const std::vector<long long> mine = keys(index, cut), theirs = keys(other, other_cut);
+  if(mine.size() != theirs.size())
+    return {};
+  std::vector<std::pair<long long, int>> sorted(theirs.size());
+  for(std::size_t w = 0; w < theirs.size(); ++w)
+    sorted[w] = {theirs[w], static_cast<int>(w)};
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> match(mine.size());
+  for(std::size_t w = 0; w < mine.size(); ++w)
+  {
+    const auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(mine[w], -1));
+    if(it == sorted.end() || it->first != mine[w])
+      return {};
+    match[w] = it->second;
+  }
+  return match;
 }
 
 } // namespace ICM

@@ -98,7 +98,8 @@ using Default_sparse_solver = Simplicial_solver;
 #endif
 
 /// Delta(u) restricted to a free vertex set: Delta_ii = sum_j w_ij over all neighbours,
-/// Delta_ij = -w_ij between free neighbours. `SparseSolver` is an Eigen sparse Cholesky
+/// Delta_ij = -w_ij between free neighbours. Two edges between the same vertices (possible
+/// in an intrinsic triangulation) share one entry. `SparseSolver` is an Eigen sparse Cholesky
 /// (analyzePattern / factorize / solve / info).
 template <class SparseSolver = Default_sparse_solver>
 class Dynamic_laplacian
@@ -113,9 +114,17 @@ public:
         free_of_[v] = static_cast<int>(vertex_of_.size());
         vertex_of_.push_back(v);
       }
+    rebuild_pattern();
+  }
+
+  /// Rebuilds the pattern from the edges of the index (after edge flips) and analyses it
+  /// again; the next solve needs a new factorization.
+  void rebuild_pattern()
+  {
     build_pattern();
     if(size() > 0)
       solver_.analyzePattern(matrix_);
+    factorized_ = false;
   }
 
   int size() const { return static_cast<int>(vertex_of_.size()); }
@@ -131,6 +140,8 @@ public:
     std::fill(values, values + matrix_.nonZeros(), 0.0);
     for(int e = 0; e < index_.number_of_edges(); ++e)
     {
+      if(index_.edges[e][0] == index_.edges[e][1])
+        continue; // a loop of an intrinsic triangulation: w (u_i - u_i)^2 adds nothing
       const int i = free_of_[index_.edges[e][0]], j = free_of_[index_.edges[e][1]];
       if(i >= 0)
         values[diagonal_slot_[i]] += w[e];

@@ -66,11 +66,17 @@ class Inverse_curvature_map
 public:
   Inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric,
                         const std::vector<char>& is_free)
-    : index_(index), curvature_(index, metric), laplacian_(index, is_free)
+    : index_(index), curvature_(index, metric), laplacian_(curvature_.mesh_index(), is_free),
+      pattern_version_(curvature_.triangulation_version())
   {}
 
   Curvature_map<Metric>& curvature_map() { return curvature_; }
-  Dynamic_laplacian<SparseSolver>& laplacian() { return laplacian_; }
+  /// The Laplacian, its pattern that of the metric's triangulation at the last accepted u.
+  Dynamic_laplacian<SparseSolver>& laplacian()
+  {
+    update_pattern();
+    return laplacian_;
+  }
   /// Curvature and weights at the last accepted u.
   const Eigen::VectorXd& curvature() const { return k_; }
   const std::vector<double>& weights() const { return w_; }
@@ -110,6 +116,7 @@ public:
         return report;
       }
       t = Clock::now();
+      update_pattern();
       laplacian_.assemble(w_);
       if(!laplacian_.factorize())
       {
@@ -186,6 +193,15 @@ public:
   }
 
 private:
+  /// A metric that flips its triangulation changes the Laplacian's pattern.
+  void update_pattern()
+  {
+    if(curvature_.triangulation_version() == pattern_version_)
+      return;
+    laplacian_.rebuild_pattern();
+    pattern_version_ = curvature_.triangulation_version();
+  }
+
   void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k,
                      Eigen::VectorXd& residual) const
   {
@@ -204,6 +220,7 @@ private:
   const internal::Mesh_index& index_;
   Curvature_map<Metric> curvature_;
   Dynamic_laplacian<SparseSolver> laplacian_;
+  long pattern_version_;
   Eigen::VectorXd k_, k_trial_;
   std::vector<double> w_, w_trial_;
 };

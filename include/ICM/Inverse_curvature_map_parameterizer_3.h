@@ -9,6 +9,7 @@
 
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Inversive_distance_metric.h>
 #include <ICM/Vertex_scaling_metric.h>
 #include <ICM/Dynamic_laplacian.h>
@@ -32,7 +33,7 @@ namespace ICM {
 
 /// The metric of `Inverse_curvature_map_parameterizer_3` when none is named: the one whose
 /// maps came out most conformal with no flipped face on the shared meshes (doc/benchmarks.md).
-using Default_metric = Vertex_scaling_metric;
+using Default_metric = Intrinsic_delaunay_metric;
 
 /// How the optimal metric is computed.
 enum class Optimum_method
@@ -102,6 +103,9 @@ struct Parameterization_report
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
   double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
   int flipped_faces = 0;
+  /// Vertices moved off the metric's layout to unflip a face of the mesh that its intrinsic
+  /// triangulation does not have (see `unflip_by_moving_vertices`).
+  int moved_vertices = 0;
   std::string layout;                    ///< "propagation" or "harmonic"
   double seconds_index = 0, seconds_metric = 0, seconds_optimum = 0, seconds_layout = 0,
          seconds_total = 0;
@@ -295,6 +299,9 @@ private:
     Curvature_map<M>& curvature = solver.curvature_map();
     curvature.evaluate(u, k, &w);
     const std::vector<double>& lengths = curvature.lengths();
+    // The metric's own triangulation (the mesh's, or its intrinsic Delaunay one) is laid
+    // out; it has the mesh's vertices, so its UVs are the mesh's.
+    const internal::Mesh_index& triangulation = curvature.mesh_index();
     const bool harmonic =
       options_.layout == Layout_method::Harmonic ||
       (options_.layout == Layout_method::Automatic &&
@@ -302,15 +309,20 @@ private:
     if(harmonic)
     {
       report.layout = "harmonic";
-      if(!layout_harmonic(index, lengths, k, w, solver.laplacian(), uv, report.message))
+      if(!layout_harmonic(triangulation, lengths, k, w, solver.laplacian(), uv, report.message))
         return ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
     }
     else
     {
       report.layout = "propagation";
-      uv = layout_by_propagation(index, lengths, curvature.face_angles());
+      uv = layout_by_propagation(triangulation, lengths, curvature.face_angles());
     }
-    const Layout_check check = check_layout(index, lengths, uv);
+    Layout_check check = check_layout(triangulation, lengths, uv);
+    if(&triangulation != &index && check.flipped_faces == 0)
+    {
+      report.moved_vertices = unflip_by_moving_vertices(index, uv);
+      check.flipped_faces = count_flipped_faces(index, uv);
+    }
     report.flipped_faces = check.flipped_faces;
     report.max_layout_length_error = check.max_relative_length_error;
     report.seconds_layout += run.lap();

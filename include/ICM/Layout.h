@@ -222,17 +222,161 @@ struct Layout_check
   double max_relative_length_error = 0;
 };
 
+/// Twice the signed area of UV triangle (a, b, c).
+inline double twice_signed_area(const Uv& a, const Uv& b, const Uv& c)
+{
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/// Faces of `index` whose UV triangle does not have positive area.
+inline int count_flipped_faces(const internal::Mesh_index& index, const std::vector<Uv>& uv)
+{
+  int flipped = 0;
+  for(const auto& f : index.faces)
+    flipped += !(twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]) > 0);
+  return flipped;
+}
+
+/// The point p maximising the smallest of the doubled areas of the faces around a vertex,
+/// each affine in p: area_i(p) = cross(b_i - a_i, p - a_i) for the face's other corners a_i,
+/// b_i in order. The maximum of a minimum of affine functions in the plane is where three of
+/// them are equal, so every triple is tried (a vertex has a handful of faces). Returns the
+/// smallest area at the point found.
+inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv& best)
+{
+  auto smallest = [&](const Uv& p) {
+    double m = HUGE_VAL;
+    for(const auto& s : sides)
+      m = std::min(m, twice_signed_area(s[0], s[1], p));
+    return m;
+  };
+  double best_value = -HUGE_VAL;
+  const std::size_t n = sides.size();
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i + 1; j < n; ++j)
+      for(std::size_t k = j + 1; k < n; ++k)
+      {
+        // area_x(p) = g_x . p + c_x; solve area_i = area_j = area_k for p.
+        auto gradient = [&](std::size_t x) {
+          const Uv &a = sides[x][0], &b = sides[x][1];
+          return Uv{-(b[1] - a[1]), b[0] - a[0]};
+        };
+        auto constant = [&](std::size_t x) { return twice_signed_area(sides[x][0], sides[x][1], Uv{0, 0}); };
+        const Uv gi = gradient(i), gj = gradient(j), gk = gradient(k);
+        const double m00 = gi[0] - gj[0], m01 = gi[1] - gj[1], r0 = constant(j) - constant(i);
+        const double m10 = gi[0] - gk[0], m11 = gi[1] - gk[1], r1 = constant(k) - constant(i);
+        const double det = m00 * m11 - m01 * m10;
+        if(!(std::abs(det) > 0))
+          continue;
+        const Uv p{(r0 * m11 - m01 * r1) / det, (m00 * r1 - r0 * m10) / det};
+        const double value = smallest(p);
+        if(std::isfinite(value) && value > best_value)
+        {
+          best_value = value;
+          best = p;
+        }
+      }
+  return best_value;
+}
+
+/// Unflips faces of `index` by moving single interior vertices, and returns how many moves
+/// were made.
+///
+/// The metric of an intrinsic triangulation is laid out exactly at the vertices, but a face
+/// of the mesh that is not a face of that triangulation is drawn straight between its
+/// vertices' images, and a very obtuse face (horse: 163 degrees, mannequin-devil: 166) can
+/// come out flipped. For each flipped face, the interior corner whose faces can be made
+/// most positive (`max_min_area_point`) moves: if that makes them all positive, only as far
+/// towards that point as needed (bisection, then twice the distance for a margin), else all
+/// the way, and a later pass moves its neighbours.
+inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vector<Uv>& uv,
+                                     int max_passes = 8)
+{
+  if(count_flipped_faces(index, uv) == 0)
+    return 0;
+  const int nv = index.number_of_vertices();
+  std::vector<int> first(nv + 1, 0), ring;
+  for(const auto& f : index.faces)
+    for(int v : f)
+      ++first[v + 1];
+  for(int v = 0; v < nv; ++v)
+    first[v + 1] += first[v];
+  ring.resize(first[nv]);
+  std::vector<int> fill(first.begin(), first.end() - 1);
+  for(int f = 0; f < index.number_of_faces(); ++f)
+    for(int v : index.faces[f])
+      ring[fill[v]++] = f;
+
+  // The other two corners of every face around v, in the face's order.
+  std::vector<std::array<Uv, 2>> sides;
+  auto sides_around = [&](int v) {
+    sides.clear();
+    for(int i = first[v]; i < first[v + 1]; ++i)
+    {
+      const auto& f = index.faces[ring[i]];
+      const int c = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+      sides.push_back({uv[f[(c + 1) % 3]], uv[f[(c + 2) % 3]]});
+    }
+  };
+  auto smallest_at = [&](const Uv& p) {
+    double m = HUGE_VAL;
+    for(const auto& s : sides)
+      m = std::min(m, twice_signed_area(s[0], s[1], p));
+    return m;
+  };
+  int moves = 0;
+  for(int pass = 0; pass < max_passes && count_flipped_faces(index, uv) > 0; ++pass)
+    for(int f = 0; f < index.number_of_faces(); ++f)
+    {
+      const auto& face = index.faces[f];
+      if(twice_signed_area(uv[face[0]], uv[face[1]], uv[face[2]]) > 0)
+        continue;
+      int best = -1;
+      Uv best_target{};
+      double best_value = -HUGE_VAL;
+      for(int v : face)
+      {
+        if(index.is_boundary_vertex[v])
+          continue;
+        sides_around(v);
+        Uv target;
+        const double value = max_min_area_point(sides, target);
+        if(value > best_value)
+        {
+          best = v;
+          best_value = value;
+          best_target = target;
+        }
+      }
+      if(best < 0 || !(best_value > smallest_at(uv[best]) || best_value > 0))
+        continue;
+      sides_around(best);
+      const Uv from = uv[best];
+      auto at = [&](double t) {
+        return Uv{from[0] + t * (best_target[0] - from[0]), from[1] + t * (best_target[1] - from[1])};
+      };
+      double t = 1;
+      if(best_value > 0)
+      {
+        double lo = 0, hi = 1;
+        for(int step = 0; step < 40; ++step)
+        {
+          const double mid = 0.5 * (lo + hi);
+          (smallest_at(at(mid)) > 0 ? hi : lo) = mid;
+        }
+        t = smallest_at(at(std::min(1.0, 2.0 * hi))) > 0 ? std::min(1.0, 2.0 * hi) : hi;
+      }
+      uv[best] = at(t);
+      ++moves;
+    }
+  return moves;
+}
+
 inline Layout_check check_layout(const internal::Mesh_index& index,
                                  const std::vector<double>& lengths, const std::vector<Uv>& uv)
 {
   Layout_check check;
-  for(const auto& f : index.faces)
-  {
-    const Uv &a = uv[f[0]], &b = uv[f[1]], &c = uv[f[2]];
-    const double twice_area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    if(!(twice_area > 0))
-      ++check.flipped_faces;
-  }
+  check.flipped_faces = count_flipped_faces(index, uv);
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const Uv &a = uv[index.edges[e][0]], &b = uv[index.edges[e][1]];

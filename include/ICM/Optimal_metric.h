@@ -104,8 +104,9 @@ Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& i
       return report;
     }
     std::fill(diagonal.begin(), diagonal.end(), 0.0);
-    for(int e = 0; e < index.number_of_edges(); ++e)
-      for(int v : index.edges[e])
+    const internal::Mesh_index& t = curvature.mesh_index();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+      for(int v : t.edges[e])
         diagonal[v] += w[e];
     double largest = 0;
     for(int v = 0; v < nv; ++v)

@@ -23,6 +23,35 @@
 
 namespace ICM {
 
+namespace internal {
+
+/// Angles and cotangent weights of a face whose sides are `l0[c] * sqrt(g_a g_b)` (side c
+/// opposite corner c, g = exp(u) at the corners). Dividing every side by sqrt(g0 g1 g2)
+/// leaves side c = l0_c / sqrt(g_c): the shape of the face without the common scale, so the
+/// excesses, angles and weights do not depend on how large the factors are, only on how
+/// they differ.
+inline Face_geometry vertex_scaling_face_geometry(const std::array<double, 3>& l0,
+                                                  const std::array<double, 3>& g)
+{
+  std::array<double, 3> side, excess;
+  for(int c = 0; c < 3; ++c)
+    side[c] = l0[c] / std::sqrt(g[c]);
+  for(int c = 0; c < 3; ++c)
+    excess[c] = 0.5 * (side[(c + 1) % 3] + side[(c + 2) % 3] - side[c]);
+  Face_geometry face;
+  face.valid = is_valid_triangle(excess);
+  face.angles = triangle_angles_from_excesses(excess);
+  // cot theta_c = (s x_c - x_a x_b) / (2 A) with A = sqrt(s x0 x1 x2): the half-angle form of
+  // the law of cosines. d theta_a / d u_b = cot theta_c / 2 (the cotangent Laplacian).
+  const double s = excess[0] + excess[1] + excess[2];
+  for(int c = 0; c < 3; ++c)
+    face.weight[c] = (s * excess[c] - excess[(c + 1) % 3] * excess[(c + 2) % 3]) / (4.0 * face.angles.area);
+  face.angles.area *= g[0] * g[1] * g[2];
+  return face;
+}
+
+} // namespace internal
+
 class Vertex_scaling_metric
 {
 public:
@@ -45,27 +74,12 @@ public:
   }
 
   /// Angles and cotangent weights of a face with edges `e[c]` (opposite corner c) and corner
-  /// factors `g[c]`. Dividing every side by sqrt(g0 g1 g2) leaves side c = l0_c / sqrt(g_c):
-  /// the shape of the face without the common scale, so the excesses, angles and weights do
-  /// not depend on how large the factors are, only on how they differ.
+  /// factors `g[c]` (see `internal::vertex_scaling_face_geometry`).
   Face_geometry face_geometry(const std::array<int, 3>& e, const std::array<double, 3>& g,
                               const std::array<double, 3>& /* l */) const
   {
-    std::array<double, 3> side, excess;
-    for(int c = 0; c < 3; ++c)
-      side[c] = mesh_lengths[e[c]] / std::sqrt(g[c]);
-    for(int c = 0; c < 3; ++c)
-      excess[c] = 0.5 * (side[(c + 1) % 3] + side[(c + 2) % 3] - side[c]);
-    Face_geometry face;
-    face.valid = is_valid_triangle(excess);
-    face.angles = triangle_angles_from_excesses(excess);
-    // cot theta_c = (s x_c - x_a x_b) / (2 A) with A = sqrt(s x0 x1 x2): the half-angle form of
-    // the law of cosines. d theta_a / d u_b = cot theta_c / 2 (the cotangent Laplacian).
-    const double s = excess[0] + excess[1] + excess[2];
-    for(int c = 0; c < 3; ++c)
-      face.weight[c] = (s * excess[c] - excess[(c + 1) % 3] * excess[(c + 2) % 3]) / (4.0 * face.angles.area);
-    face.angles.area *= g[0] * g[1] * g[2];
-    return face;
+    return internal::vertex_scaling_face_geometry(
+      {mesh_lengths[e[0]], mesh_lengths[e[1]], mesh_lengths[e[2]]}, g);
   }
 
   std::string summary() const { return "the mesh's own lengths"; }

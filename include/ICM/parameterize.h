@@ -74,6 +74,7 @@ struct Chart_report
   int newton_iterations = 0;
   double max_curvature_error = 0;      ///< max |k| over non-singular vertices
   int flipped_faces = 0;
+  int moved_vertices = 0;              ///< see `Parameterization_report::moved_vertices`
   int overlapping_border_edges = 0;    ///< pairs of border edges of the chart that cross
   double max_layout_length_error = 0;
   double seam_length_error = 0;        ///< max relative difference of a seam's two sides
@@ -91,22 +92,35 @@ struct Surface_parameterization_report
 
 namespace internal {
 
+/// The metric of class `Metric` for `index`; a metric that flips its own triangulation keeps
+/// `fixed_edges` (the seams) as edges.
+template <class Metric>
+Metric make_metric(const Mesh_index& index, const std::vector<char>& fixed_edges)
+{
+  if constexpr(std::is_constructible<Metric, const Mesh_index&, const std::vector<char>&>::value)
+    return Metric(index, fixed_edges);
+  else
+    return Metric(index);
+}
+
 /// The entropy optimum for the singular set S (u_S = u0_S, K_N = 0) in the class of `Metric`,
-/// with the surface's lengths and angles at the optimum. `prescribed` (curvature per vertex,
-/// NaN where none) are user cones with a fixed angle: they join the unknowns with their
-/// target curvature.
+/// with the lengths and angles at the optimum on the metric's triangulation: the mesh's, or
+/// (`has_triangulation`) the metric's own intrinsic one, whose seam edges are the mesh's.
+/// `prescribed` (curvature per vertex, NaN where none) are user cones with a fixed angle:
+/// they join the unknowns with their target curvature.
 template <class Metric, class Solver>
 struct Surface_optimum
 {
-  Metric metric;
+  static constexpr bool has_triangulation = Curvature_map<Metric>::has_intrinsic_triangulation;
   Eigen::VectorXd u, k;
   std::vector<double> lengths;
   std::vector<Triangle_angles> angles;
+  Mesh_index triangulation; ///< only when `has_triangulation`
   Newton_report newton;
 
-  Surface_optimum(const Mesh_index& index, const std::vector<char>& is_singular,
-                  const std::vector<double>& prescribed, const Newton_options& options)
-    : metric(index)
+  Surface_optimum(const Mesh_index& index, const std::vector<char>& is_seam,
+                  const std::vector<char>& is_singular, const std::vector<double>& prescribed,
+                  const Newton_options& options)
   {
     const int nv = index.number_of_vertices();
     std::vector<char> is_free(nv);
@@ -124,6 +138,7 @@ struct Surface_optimum
     // equation then holds by Gauss-Bonnet (checked by the caller).
     if(!any_fixed && nv > 0)
       is_free[0] = 0;
+    const Metric metric = make_metric<Metric>(index, is_seam);
     Inverse_curvature_map<Solver, Metric> solver(index, metric, is_free);
     u = metric.u0;
     newton = solver.solve(target, u, options);
@@ -131,6 +146,8 @@ struct Surface_optimum
     k = solver.curvature();
     lengths = solver.curvature_map().lengths();
     angles = solver.curvature_map().face_angles();
+    if constexpr(has_triangulation)
+      triangulation = solver.curvature_map().mesh_index();
   }
 };
 
@@ -150,6 +167,85 @@ inline double seam_length_error(const Cut_mesh& cut, const std::vector<Uv>& uv)
     worst = std::max(worst, std::abs(l0 - l1) / std::max(l0, l1));
   }
   return worst;
+}
+
+/// The optimum in the class of `Metric` for the singular set and its layout on `cut`,
+/// checked: steps 5 and 7 of one component. Returns the failure reason, or empty.
+template <class Metric, class Solver>
+std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_seam,
+                               const std::vector<char>& is_singular, const std::vector<double>& prescribed,
+                               const Cut_mesh& cut, const Surface_parameterization_options& options,
+                               Surface_parameterization_report& report, Chart_report& chart,
+                               std::vector<Uv>& uv)
+{
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const int nv = index.number_of_vertices();
+  Clock::time_point t = Clock::now();
+  Surface_optimum<Metric, Solver> optimum(index, is_seam, is_singular, prescribed, options.newton);
+  chart.metric = Metric::name;
+  chart.newton_iterations = optimum.newton.iterations;
+  report.seconds_optimum += seconds_since(t);
+  if(!optimum.newton.converged)
+    return optimum.newton.message;
+  const Eigen::VectorXd& k = optimum.k;
+  for(int v = 0; v < nv; ++v)
+    if(is_singular[v] && !index.is_boundary_vertex[v])
+    {
+      chart.cones.push_back(v);
+      chart.cone_curvatures.push_back(k[v]);
+    }
+    else if(!is_singular[v])
+      chart.max_curvature_error = std::max(chart.max_curvature_error, std::abs(k[v]));
+
+  // On the cut: the surface's flat metric laid out, both sides of a seam one length. An
+  // intrinsic triangulation is cut along the same seams and laid out, and each wedge of the
+  // mesh's cut takes the UV of the same wedge there.
+  t = Clock::now();
+  Cut_mesh intrinsic_cut;
+  if(optimum.has_triangulation)
+  {
+    intrinsic_cut = cut_mesh(optimum.triangulation, is_seam);
+    if(!intrinsic_cut.ok())
+      return "the intrinsic triangulation: " + intrinsic_cut.status.message;
+  }
+  const Cut_mesh& laid = optimum.has_triangulation ? intrinsic_cut : cut;
+  std::vector<double> disk_lengths(laid.disk.number_of_edges());
+  for(int d = 0; d < laid.disk.number_of_edges(); ++d)
+    disk_lengths[d] = optimum.lengths[laid.surface_edge[d]];
+  uv = layout_by_propagation(laid.disk, disk_lengths, optimum.angles);
+  const Layout_check check = check_layout(laid.disk, disk_lengths, uv);
+  chart.flipped_faces = check.flipped_faces;
+  if(optimum.has_triangulation)
+  {
+    const std::vector<int> match = match_wedges(index, cut, optimum.triangulation, intrinsic_cut, is_seam);
+    if(match.empty())
+      return "the wedges of the intrinsic triangulation do not match the mesh's";
+    std::vector<Uv> intrinsic_uv;
+    intrinsic_uv.swap(uv);
+    uv.resize(match.size());
+    for(std::size_t w = 0; w < match.size(); ++w)
+      uv[w] = intrinsic_uv[match[w]];
+    if(check.flipped_faces == 0)
+      chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv);
+    chart.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(cut.disk, uv));
+  }
+  chart.max_layout_length_error = check.max_relative_length_error;
+  chart.seam_length_error = seam_length_error(cut, uv);
+  bool finite = true;
+  for(const Uv& p : uv)
+    finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]);
+  if(finite)
+    chart.overlapping_border_edges = count_border_overlaps(cut.disk, uv).crossing_pairs;
+  report.seconds_layout += seconds_since(t);
+  if(!finite || chart.flipped_faces > 0)
+    return std::to_string(chart.flipped_faces) + " faces are flipped in the layout";
+  if(!(check.max_relative_length_error <= options.max_layout_length_error))
+    return "the layout does not reproduce the metric (relative edge length error " +
+           std::to_string(check.max_relative_length_error) + ")";
+  return {};
 }
 
 /// One component: cones, optimum, cut, layout, checks. `uv` receives one UV per wedge of
@@ -236,44 +332,19 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
     return "a closed genus-0 surface needs at least two cones (automatic cones are off)";
   report.seconds_cones += seconds_since(t);
 
-  // On the surface: the optimum in the class of `Metric`, else of the circle packing.
-  t = Clock::now();
-  Surface_optimum<Metric, Solver> optimum(index, is_singular, prescribed, options.newton);
-  chart.metric = Metric::name;
-  std::vector<double> lengths = optimum.lengths;
-  std::vector<Triangle_angles> angles = optimum.angles;
-  Eigen::VectorXd k = optimum.k;
-  chart.newton_iterations = optimum.newton.iterations;
-  std::string failure = optimum.newton.converged ? "" : optimum.newton.message;
-  if(!failure.empty() && !std::is_same<Metric, Circle_packing_metric>::value &&
-     options.fall_back_to_circle_packing)
-  {
-    chart.fallback_reason = std::string(Metric::name) + ": " + failure;
-    Surface_optimum<Circle_packing_metric, Solver> packing(index, is_singular, prescribed, options.newton);
-    chart.metric = Circle_packing_metric::name;
-    chart.newton_iterations = packing.newton.iterations;
-    failure = packing.newton.converged ? "" : packing.newton.message;
-    lengths = packing.lengths;
-    angles = packing.angles;
-    k = packing.k;
-  }
-  report.seconds_optimum += seconds_since(t);
-  if(!failure.empty())
-    return failure;
-  for(int v = 0; v < nv; ++v)
-    if(is_singular[v] && !index.is_boundary_vertex[v])
-    {
-      chart.cones.push_back(v);
-      chart.cone_curvatures.push_back(k[v]);
-    }
-    else if(!is_singular[v])
-      chart.max_curvature_error = std::max(chart.max_curvature_error, std::abs(k[v]));
-
-  // The cut: through every cone that carries curvature (a torus's pinned vertex does not).
+  // The cut: through every interior singular vertex that will carry curvature (the one
+  // free vertex of a torus carries none), made before the optimum so that a metric with
+  // its own triangulation keeps the seams as edges.
   t = Clock::now();
   std::vector<char> is_cone(nv, 0);
-  for(std::size_t i = 0; i < chart.cones.size(); ++i)
-    is_cone[chart.cones[i]] = std::abs(chart.cone_curvatures[i]) > 1e-9;
+  int interior_singular = 0;
+  for(int v = 0; v < nv; ++v)
+  {
+    is_cone[v] = is_singular[v] && !index.is_boundary_vertex[v] && prescribed[v] != 0.0;
+    interior_singular += is_singular[v] && !index.is_boundary_vertex[v];
+  }
+  if(closed && chi == 0 && interior_singular == 1)
+    std::fill(is_cone.begin(), is_cone.end(), 0);
   const Cut_graph_result graph = cut_graph(index, is_cone);
   if(!graph.ok())
     return graph.status.message;
@@ -284,29 +355,25 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
     return cut.status.message;
   report.seconds_cut += seconds_since(t);
 
-  // On the cut: the surface's flat metric laid out, both sides of a seam one length.
-  t = Clock::now();
-  std::vector<double> disk_lengths(cut.disk.number_of_edges());
-  for(int d = 0; d < cut.disk.number_of_edges(); ++d)
-    disk_lengths[d] = lengths[cut.surface_edge[d]];
-  uv = layout_by_propagation(cut.disk, disk_lengths, angles);
-  const Layout_check check = check_layout(cut.disk, disk_lengths, uv);
-  chart.flipped_faces = check.flipped_faces;
-  chart.max_layout_length_error = check.max_relative_length_error;
-  chart.seam_length_error = seam_length_error(cut, uv);
-  bool finite = true;
-  for(const Uv& p : uv)
-    finite = finite && std::isfinite(p[0]) && std::isfinite(p[1]);
-  if(finite)
-    chart.overlapping_border_edges = count_border_overlaps(cut.disk, uv).crossing_pairs;
-  report.seconds_layout += seconds_since(t);
-  if(!finite || check.flipped_faces > 0)
-    return std::to_string(check.flipped_faces) + " faces are flipped in the layout";
-  if(!(check.max_relative_length_error <= options.max_layout_length_error))
-    return "the layout does not reproduce the metric (relative edge length error " +
-           std::to_string(check.max_relative_length_error) + ")";
-  return {};
+  // On the surface: the optimum in the class of `Metric`; on the cut: its layout. If either
+  // fails, both again in the class of the circle packing.
+  std::string failure =
+    optimum_and_layout<Metric, Solver>(index, graph.is_seam, is_singular, prescribed, cut, options,
+                                       report, chart, uv);
+  if(!failure.empty() && !std::is_same<Metric, Circle_packing_metric>::value &&
+     options.fall_back_to_circle_packing)
+  {
+    const std::string reason = std::string(Metric::name) + ": " + failure;
+    chart = Chart_report{chart.vertices, chart.faces, chart.boundary_loops, chart.genus};
+    chart.seam_edges = graph.number_of_seam_edges;
+    chart.homology_generators = graph.number_of_generators;
+    failure = optimum_and_layout<Circle_packing_metric, Solver>(index, graph.is_seam, is_singular, prescribed,
+                                                                cut, options, report, chart, uv);
+    chart.fallback_reason = reason;
+  }
+  return failure;
 }
+
 
 } // namespace internal
 

@@ -84,45 +84,13 @@ inline double squared_distance(const std::array<double, 3>& a, const std::array<
   return dx * dx + dy * dy + dz * dz;
 }
 
-/// Builds edges, edge-face incidence, boundary flags and loops from `index.faces`.
-/// Edges come from sorting the corner pairs, so nothing here depends on the graph type.
-/// Fails on a non-manifold edge or vertex, which a halfedge graph can still encode at vertices.
-inline Index_status build_connectivity(Mesh_index& index)
+/// Boundary flags and loops from faces, edges and edge-face incidence; fails on a vertex
+/// whose faces form more than one fan. Edges are told apart by id, not by their endpoints,
+/// so this also serves a triangulation with two edges between the same vertices.
+inline Index_status build_border(Mesh_index& index)
 {
   using namespace CGAL::Surface_mesh_parameterization;
-  const int nf = index.number_of_faces();
   const int nv = index.number_of_vertices();
-
-  // (min vertex, max vertex, face, corner opposite the edge)
-  std::vector<std::array<int, 4>> sides;
-  sides.reserve(3 * static_cast<std::size_t>(nf));
-  for(int f = 0; f < nf; ++f)
-    for(int c = 0; c < 3; ++c)
-    {
-      const int a = index.faces[f][(c + 1) % 3], b = index.faces[f][(c + 2) % 3];
-      sides.push_back({std::min(a, b), std::max(a, b), f, c});
-    }
-  std::sort(sides.begin(), sides.end());
-
-  index.edges.clear();
-  index.edge_faces.clear();
-  index.face_edges.assign(nf, {-1, -1, -1});
-  for(std::size_t s = 0; s < sides.size();)
-  {
-    std::size_t t = s + 1;
-    while(t < sides.size() && sides[t][0] == sides[s][0] && sides[t][1] == sides[s][1])
-      ++t;
-    if(t - s > 2)
-      return {ERROR_NON_TRIANGULAR_MESH, "non-manifold edge shared by " + std::to_string(t - s) +
-                                           " faces"};
-    const int e = index.number_of_edges();
-    index.edges.push_back({sides[s][0], sides[s][1]});
-    index.edge_faces.push_back({sides[s][2], t - s == 2 ? sides[s + 1][2] : -1});
-    for(std::size_t r = s; r < t; ++r)
-      index.face_edges[sides[r][2]][sides[r][3]] = e;
-    s = t;
-  }
-
   // A manifold vertex has one fan of faces: #edges == #faces inside, #faces + 1 on the border.
   std::vector<int> vertex_faces(nv, 0), vertex_edges(nv, 0), border_out(nv, -1),
     border_out_edge(nv, -1), border_out_count(nv, 0);
@@ -173,6 +141,47 @@ inline Index_status build_connectivity(Mesh_index& index)
     index.boundary_loop_edges.push_back(std::move(loop_edges));
   }
   return {};
+}
+
+
+/// Builds edges, edge-face incidence, boundary flags and loops from `index.faces`.
+/// Edges come from sorting the corner pairs, so nothing here depends on the graph type.
+/// Fails on a non-manifold edge or vertex, which a halfedge graph can still encode at vertices.
+inline Index_status build_connectivity(Mesh_index& index)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  const int nf = index.number_of_faces();
+
+  // (min vertex, max vertex, face, corner opposite the edge)
+  std::vector<std::array<int, 4>> sides;
+  sides.reserve(3 * static_cast<std::size_t>(nf));
+  for(int f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const int a = index.faces[f][(c + 1) % 3], b = index.faces[f][(c + 2) % 3];
+      sides.push_back({std::min(a, b), std::max(a, b), f, c});
+    }
+  std::sort(sides.begin(), sides.end());
+
+  index.edges.clear();
+  index.edge_faces.clear();
+  index.face_edges.assign(nf, {-1, -1, -1});
+  for(std::size_t s = 0; s < sides.size();)
+  {
+    std::size_t t = s + 1;
+    while(t < sides.size() && sides[t][0] == sides[s][0] && sides[t][1] == sides[s][1])
+      ++t;
+    if(t - s > 2)
+      return {ERROR_NON_TRIANGULAR_MESH, "non-manifold edge shared by " + std::to_string(t - s) +
+                                           " faces"};
+    const int e = index.number_of_edges();
+    index.edges.push_back({sides[s][0], sides[s][1]});
+    index.edge_faces.push_back({sides[s][2], t - s == 2 ? sides[s + 1][2] : -1});
+    for(std::size_t r = s; r < t; ++r)
+      index.face_edges[sides[r][2]][sides[r][3]] = e;
+    s = t;
+  }
+  return build_border(index);
 }
 
 /// Checks the geometry the numeric core relies on: finite coordinates, no zero-area face.
