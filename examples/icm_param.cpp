@@ -269,7 +269,7 @@ int main(int argc, char** argv)
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);
 
   // Totals over the charts, and the worst of each check.
-  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0;
+  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, moved = 0;
   double curvature_error = 0, length_error = 0, seam_error = 0;
   std::string metrics, fallbacks;
   for(const ICM::Chart_report& c : report.charts)
@@ -279,6 +279,7 @@ int main(int argc, char** argv)
     loops += c.boundary_loops;
     newton = std::max(newton, c.newton_iterations);
     overlaps += c.overlapping_border_edges;
+    moved += c.moved_vertices;
     curvature_error = std::max(curvature_error, c.max_curvature_error);
     length_error = std::max(length_error, c.max_layout_length_error);
     seam_error = std::max(seam_error, c.seam_length_error);
@@ -301,6 +302,7 @@ int main(int argc, char** argv)
               << ",\"max_layout_length_error\":" << json_number(length_error)
               << ",\"seam_length_error\":" << json_number(seam_error)
               << ",\"overlapping_border_edges\":" << overlaps
+              << ",\"moved_vertices\":" << moved
               << ",\"metric\":" << json_string(metrics)
               << ",\"metric_fallback\":" << json_string(fallbacks)
               << ",\"flipped_faces\":" << measures.flipped_faces

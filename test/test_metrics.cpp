@@ -7,7 +7,9 @@
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Inverse_curvature_map.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Inversive_distance_metric.h>
+#include <ICM/Layout.h>
 #include <ICM/Optimal_metric.h>
 #include <ICM/Vertex_scaling_metric.h>
 #include <ICM/internal/Mesh_index.h>
@@ -22,6 +24,7 @@
 #include "test_support.h"
 
 #include <cmath>
+#include <iostream>
 #include <string>
 
 namespace {
@@ -39,7 +42,7 @@ class MetricConcept : public testing::Test
 {
 };
 using Metrics = testing::Types<ICM::Circle_packing_metric, ICM::Inversive_distance_metric,
-                               ICM::Vertex_scaling_metric>;
+                               ICM::Vertex_scaling_metric, ICM::Intrinsic_delaunay_metric>;
 class Metric_names
 {
 public:
@@ -61,7 +64,8 @@ TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDiffe
     Eigen::VectorXd k;
     std::vector<double> w;
     ASSERT_EQ(curvature.evaluate(u, k, &w), 0) << name;
-    const Eigen::MatrixXd delta = dense_laplacian(index, w);
+    // The weights are per edge of the metric's triangulation (its own, for a flipping one).
+    const Eigen::MatrixXd delta = dense_laplacian(curvature.mesh_index(), w);
     EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
     EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-10 * delta.cwiseAbs().maxCoeff());
 
@@ -186,6 +190,115 @@ TEST(VertexScalingMetric, CotangentWeightsOfARightTriangle)
   const ICM::Face_geometry far =
     metric.face_geometry(index.face_edges[0], {1.0, std::exp(8.0), 1.0}, {0.0, 0.0, 0.0});
   EXPECT_FALSE(far.valid);
+}
+
+/// The mesh's angle defect per vertex (pi or 2 pi minus the angle sum).
+Eigen::VectorXd angle_defect(const Mesh_index& index)
+{
+  Eigen::VectorXd defect(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    defect[v] = index.is_boundary_vertex[v] ? M_PI : 2 * M_PI;
+  for(const auto& f : index.faces)
+    for(int c = 0; c < 3; ++c)
+    {
+      const auto &p = index.points[f[c]], &a = index.points[f[(c + 1) % 3]], &b = index.points[f[(c + 2) % 3]];
+      const Eigen::Vector3d x(a[0] - p[0], a[1] - p[1], a[2] - p[2]), y(b[0] - p[0], b[1] - p[1], b[2] - p[2]);
+      defect[f[c]] -= std::atan2(x.cross(y).norm(), x.dot(y));
+    }
+  return defect;
+}
+
+TEST(IntrinsicDelaunayMetric, IsTheMeshOnItsDelaunayTriangulationAtU0)
+{
+  // Euclidean flips change the edges, not the metric: the curvature at u0 is still the
+  // mesh's angle defect, and every interior edge is Delaunay (cotangent weight >= 0).
+  const Mesh_index index = index_of(icm_test::data_path("three_peaks.off"));
+  ICM::Intrinsic_delaunay_metric metric(index);
+  const Mesh_index& t = metric.triangulation();
+  EXPECT_GT(metric.flips(), 100); // three_peaks is far from Delaunay (578 flips)
+  EXPECT_EQ(t.number_of_edges(), index.number_of_edges());
+  EXPECT_EQ(t.number_of_faces(), index.number_of_faces());
+  ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  ASSERT_EQ(curvature.evaluate(metric.u0, k, &w), 0);
+  EXPECT_LT((k - angle_defect(index)).cwiseAbs().maxCoeff(), 1e-10);
+  double most_negative = 0;
+  for(int e = 0; e < t.number_of_edges(); ++e)
+    if(t.edge_faces[e][1] >= 0)
+      most_negative = std::min(most_negative, w[e]);
+  EXPECT_GT(most_negative, -1e-9);
+}
+
+TEST(IntrinsicDelaunayMetric, FlipsKeepMostFacesTriangularWhereVertexScalingBreaksThem)
+{
+  // Large conformal factors (a random u of amplitude 1) break many of plain vertex scaling's
+  // triangles; flipped to Delaunay with Ptolemy's relation, far fewer break (measured: the
+  // flips do not remove every invalid face, which is why Newton's line search still checks).
+  const Mesh_index index = index_of(icm_test::data_path("nefertiti.off"));
+  const Eigen::VectorXd u = icm_test::random_perturbation(Eigen::VectorXd::Zero(index.number_of_vertices()), 1.0, 5);
+  const ICM::Vertex_scaling_metric plain(index);
+  ICM::Curvature_map<ICM::Vertex_scaling_metric> plain_curvature(index, plain);
+  Eigen::VectorXd k;
+  const int plain_invalid = plain_curvature.evaluate(u, k);
+
+  const ICM::Intrinsic_delaunay_metric metric(index);
+  ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
+  std::vector<double> w;
+  const int invalid = curvature.evaluate(u, k, &w);
+  EXPECT_LT(invalid, plain_invalid / 4) << plain_invalid;
+  EXPECT_GT(curvature.metric().flips(), metric.flips());
+  std::cout << "invalid faces: vertex scaling " << plain_invalid << ", flipped " << invalid << "\n";
+}
+
+TEST(IntrinsicDelaunayMetric, PtolemyFlipOfACyclicDiamondGivesTheOtherDiagonal)
+{
+  // A square's diamond is cyclic: Ptolemy's diagonal equals the Euclidean one, sqrt(2).
+  Mesh_index index;
+  index.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  index.faces = {{0, 1, 2}, {0, 2, 3}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  int diagonal = 0;
+  while(index.edge_faces[diagonal][1] < 0)
+    ++diagonal;
+  ICM::internal::Edge_diamond x;
+  ASSERT_TRUE(ICM::internal::edge_diamond(index, diagonal, x));
+  const ICM::internal::Diamond_sides sides = ICM::internal::diamond_sides(index, x);
+  const std::vector<double> l = ICM::internal::euclidean_edge_lengths(index);
+  EXPECT_NEAR(ICM::internal::ptolemy_flipped_length(sides, diagonal, l), std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(ICM::internal::euclidean_flipped_length(sides, diagonal, l), std::sqrt(2.0), 1e-15);
+  ICM::internal::flip_edge(index, diagonal, x);
+  EXPECT_EQ(index.edges[diagonal], (std::array<int, 2>{1, 3}));
+  // Both faces still counter-clockwise in the plane.
+  for(const auto& f : index.faces)
+  {
+    const auto &a = index.points[f[0]], &b = index.points[f[1]], &c = index.points[f[2]];
+    EXPECT_GT((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]), 0);
+  }
+}
+
+TEST(Unflip, MovesAVertexBackIntoItsRing)
+{
+  // A hexagon fan whose centre was placed outside the ring: its faces flip; moving the
+  // centre alone repairs them.
+  Mesh_index index;
+  index.points.push_back({0, 0, 0});
+  std::vector<ICM::Uv> uv = {{1.5, 0.2}};
+  for(int i = 0; i < 6; ++i)
+  {
+    index.points.push_back({std::cos(i * M_PI / 3), std::sin(i * M_PI / 3), 0});
+    uv.push_back({index.points.back()[0], index.points.back()[1]});
+  }
+  for(int i = 0; i < 6; ++i)
+    index.faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_GT(ICM::count_flipped_faces(index, uv), 0);
+  std::vector<char> movable(index.number_of_vertices(), 0);
+  movable[0] = 1;
+  const std::vector<ICM::Uv> ring(uv.begin() + 1, uv.end());
+  EXPECT_GE(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  EXPECT_TRUE(std::equal(ring.begin(), ring.end(), uv.begin() + 1)); // only the centre moved
 }
 
 } // namespace

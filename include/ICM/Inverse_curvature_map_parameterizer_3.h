@@ -320,7 +320,8 @@ private:
     Layout_check check = check_layout(triangulation, lengths, uv);
     if(&triangulation != &index && check.flipped_faces == 0)
     {
-      report.moved_vertices = unflip_by_moving_vertices(index, uv);
+      report.moved_vertices =
+        unflip_by_moving_vertices(index, uv, std::vector<char>(index.number_of_vertices(), 1));
       check.flipped_faces = count_flipped_faces(index, uv);
     }
     report.flipped_faces = check.flipped_faces;

@@ -285,12 +285,13 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
 /// The metric of an intrinsic triangulation is laid out exactly at the vertices, but a face
 /// of the mesh that is not a face of that triangulation is drawn straight between its
 /// vertices' images, and a very obtuse face (horse: 163 degrees, mannequin-devil: 166) can
-/// come out flipped. For each flipped face, the interior corner whose faces can be made
+/// come out flipped. For each flipped face, the movable corner (a border vertex may move,
+/// the side of a seam may not: its twin would not follow) whose faces can be made
 /// most positive (`max_min_area_point`) moves: if that makes them all positive, only as far
 /// towards that point as needed (bisection, then twice the distance for a margin), else all
 /// the way, and a later pass moves its neighbours.
 inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vector<Uv>& uv,
-                                     int max_passes = 8)
+                                     const std::vector<char>& is_movable, int max_passes = 8)
 {
   if(count_flipped_faces(index, uv) == 0)
     return 0;
@@ -336,10 +337,10 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
       double best_value = -HUGE_VAL;
       for(int v : face)
       {
-        if(index.is_boundary_vertex[v])
+        if(!is_movable[v])
           continue;
         sides_around(v);
-        Uv target;
+        Uv target{0.0, 0.0};
         const double value = max_min_area_point(sides, target);
         if(value > best_value)
         {

@@ -229,7 +229,16 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
     for(std::size_t w = 0; w < match.size(); ++w)
       uv[w] = intrinsic_uv[match[w]];
     if(check.flipped_faces == 0)
-      chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv);
+    {
+      // A wedge may move when it is its vertex's only one (not on a seam).
+      std::vector<int> wedges_of(nv, 0);
+      for(int v : cut.surface_vertex)
+        ++wedges_of[v];
+      std::vector<char> is_movable(cut.surface_vertex.size());
+      for(std::size_t w = 0; w < is_movable.size(); ++w)
+        is_movable[w] = wedges_of[cut.surface_vertex[w]] == 1;
+      chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv, is_movable);
+    }
     chart.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(cut.disk, uv));
   }
   chart.max_layout_length_error = check.max_relative_length_error;
