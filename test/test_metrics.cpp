@@ -69,19 +69,7 @@ TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDiffe
     EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
     EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-10 * delta.cwiseAbs().maxCoeff());
 
-    const double h = 1e-6;
-    double worst = 0;
-    for(int j = 0; j < index.number_of_vertices(); j += 13)
-    {
-      Eigen::VectorXd up = u, down = u, kp, km;
-      up[j] += h;
-      down[j] -= h;
-      curvature.evaluate(up, kp);
-      curvature.evaluate(down, km);
-      const Eigen::VectorXd column = (kp - km) / (2 * h);
-      worst = std::max(worst, (column - delta.col(j)).cwiseAbs().maxCoeff() /
-                                delta.col(j).cwiseAbs().maxCoeff());
-    }
+    const double worst = icm_test::jacobian_finite_difference_error(curvature, u, delta, 13);
     EXPECT_LT(worst, 1e-6) << name;
     EXPECT_NEAR(ICM::gauss_bonnet_defect(index, k), 0.0, 1e-9) << name;
   }
@@ -109,6 +97,22 @@ TYPED_TEST(MetricConcept, NewtonConvergesQuadraticallyToTheFreeBoundaryOptimum)
   EXPECT_GE(quadratic_steps, 1);
 }
 
+/// The mesh's angle defect per vertex (pi or 2 pi minus the angle sum).
+Eigen::VectorXd angle_defect(const Mesh_index& index)
+{
+  Eigen::VectorXd defect(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    defect[v] = index.is_boundary_vertex[v] ? M_PI : 2 * M_PI;
+  for(const auto& f : index.faces)
+    for(int c = 0; c < 3; ++c)
+    {
+      const auto &p = index.points[f[c]], &a = index.points[f[(c + 1) % 3]], &b = index.points[f[(c + 2) % 3]];
+      const Eigen::Vector3d x(a[0] - p[0], a[1] - p[1], a[2] - p[2]), y(b[0] - p[0], b[1] - p[1], b[2] - p[2]);
+      defect[f[c]] -= std::atan2(x.cross(y).norm(), x.dot(y));
+    }
+  return defect;
+}
+
 // The metrics that are the mesh at u0.
 template <class Metric>
 class ExactMetric : public testing::Test
@@ -131,17 +135,7 @@ TYPED_TEST(ExactMetric, ReproducesTheMeshAtU0)
   // And the curvature at u0 is the mesh's angle defect.
   Eigen::VectorXd k;
   ASSERT_EQ(curvature.evaluate(metric.u0, k), 0);
-  Eigen::VectorXd defect = Eigen::VectorXd::Zero(index.number_of_vertices());
-  for(int v = 0; v < index.number_of_vertices(); ++v)
-    defect[v] = index.is_boundary_vertex[v] ? M_PI : 2 * M_PI;
-  for(const auto& f : index.faces)
-    for(int c = 0; c < 3; ++c)
-    {
-      const auto &p = index.points[f[c]], &a = index.points[f[(c + 1) % 3]], &b = index.points[f[(c + 2) % 3]];
-      const Eigen::Vector3d x(a[0] - p[0], a[1] - p[1], a[2] - p[2]), y(b[0] - p[0], b[1] - p[1], b[2] - p[2]);
-      defect[f[c]] -= std::atan2(x.cross(y).norm(), x.dot(y));
-    }
-  EXPECT_LT((k - defect).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_LT((k - angle_defect(index)).cwiseAbs().maxCoeff(), 1e-10);
 }
 
 TYPED_TEST(ExactMetric, TargetOutsideTheValidRegionIsRefusedWithAReason)
@@ -190,22 +184,6 @@ TEST(VertexScalingMetric, CotangentWeightsOfARightTriangle)
   const ICM::Face_geometry far =
     metric.face_geometry(index.face_edges[0], {1.0, std::exp(8.0), 1.0}, {0.0, 0.0, 0.0});
   EXPECT_FALSE(far.valid);
-}
-
-/// The mesh's angle defect per vertex (pi or 2 pi minus the angle sum).
-Eigen::VectorXd angle_defect(const Mesh_index& index)
-{
-  Eigen::VectorXd defect(index.number_of_vertices());
-  for(int v = 0; v < index.number_of_vertices(); ++v)
-    defect[v] = index.is_boundary_vertex[v] ? M_PI : 2 * M_PI;
-  for(const auto& f : index.faces)
-    for(int c = 0; c < 3; ++c)
-    {
-      const auto &p = index.points[f[c]], &a = index.points[f[(c + 1) % 3]], &b = index.points[f[(c + 2) % 3]];
-      const Eigen::Vector3d x(a[0] - p[0], a[1] - p[1], a[2] - p[2]), y(b[0] - p[0], b[1] - p[1], b[2] - p[2]);
-      defect[f[c]] -= std::atan2(x.cross(y).norm(), x.dot(y));
-    }
-  return defect;
 }
 
 TEST(IntrinsicDelaunayMetric, IsTheMeshOnItsDelaunayTriangulationAtU0)

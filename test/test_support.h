@@ -76,6 +76,27 @@ inline Eigen::MatrixXd dense_laplacian(const ICM::internal::Mesh_index& index, c
   return delta;
 }
 
+/// Largest relative difference, over every `stride`-th vertex, between column j of `delta`
+/// and the central difference of the curvature map K at `u` in u_j.
+template <class Curvature>
+double jacobian_finite_difference_error(Curvature& curvature, const Eigen::VectorXd& u,
+                                        const Eigen::MatrixXd& delta, int stride)
+{
+  const double h = 1e-6;
+  double worst = 0;
+  for(int j = 0; j < u.size(); j += stride)
+  {
+    Eigen::VectorXd up = u, down = u, kp, km;
+    up[j] += h;
+    down[j] -= h;
+    curvature.evaluate(up, kp);
+    curvature.evaluate(down, km);
+    const Eigen::VectorXd column = (kp - km) / (2 * h);
+    worst = std::max(worst, (column - delta.col(j)).cwiseAbs().maxCoeff() / delta.col(j).cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
+
 inline std::string read_text(const fs::path& path)
 {
   std::ifstream in(path, std::ios::binary);

@@ -237,6 +237,15 @@ inline int count_flipped_faces(const internal::Mesh_index& index, const std::vec
   return flipped;
 }
 
+/// The smallest doubled area of the triangles (s[0], s[1], p) over the `sides` of a fan.
+inline double smallest_area_at(const std::vector<std::array<Uv, 2>>& sides, const Uv& p)
+{
+  double m = HUGE_VAL;
+  for(const auto& s : sides)
+    m = std::min(m, twice_signed_area(s[0], s[1], p));
+  return m;
+}
+
 /// The point p maximising the smallest of the doubled areas of the faces around a vertex,
 /// each affine in p: area_i(p) = cross(b_i - a_i, p - a_i) for the face's other corners a_i,
 /// b_i in order. The maximum of a minimum of affine functions in the plane is where three of
@@ -244,12 +253,6 @@ inline int count_flipped_faces(const internal::Mesh_index& index, const std::vec
 /// smallest area at the point found.
 inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv& best)
 {
-  auto smallest = [&](const Uv& p) {
-    double m = HUGE_VAL;
-    for(const auto& s : sides)
-      m = std::min(m, twice_signed_area(s[0], s[1], p));
-    return m;
-  };
   double best_value = -HUGE_VAL;
   const std::size_t n = sides.size();
   for(std::size_t i = 0; i < n; ++i)
@@ -269,7 +272,7 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
         if(!(std::abs(det) > 0))
           continue;
         const Uv p{(r0 * m11 - m01 * r1) / det, (m00 * r1 - r0 * m10) / det};
-        const double value = smallest(p);
+        const double value = smallest_area_at(sides, p);
         if(std::isfinite(value) && value > best_value)
         {
           best_value = value;
@@ -319,12 +322,7 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
       sides.push_back({uv[f[(c + 1) % 3]], uv[f[(c + 2) % 3]]});
     }
   };
-  auto smallest_at = [&](const Uv& p) {
-    double m = HUGE_VAL;
-    for(const auto& s : sides)
-      m = std::min(m, twice_signed_area(s[0], s[1], p));
-    return m;
-  };
+  auto smallest_at = [&](const Uv& p) { return smallest_area_at(sides, p); };
   int moves = 0;
   for(int pass = 0; pass < max_passes && count_flipped_faces(index, uv) > 0; ++pass)
     for(int f = 0; f < index.number_of_faces(); ++f)

@@ -365,7 +365,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   report.seconds_cut += seconds_since(t);
 
   // On the surface: the optimum in the class of `Metric`; on the cut: its layout. If either
-  // fails, both again in the class of the circle packing.
+  // fails, both again in the class of the circle packing, from the chart as it was.
+  const Chart_report before_optimum = chart;
   std::string failure =
     optimum_and_layout<Metric, Solver>(index, graph.is_seam, is_singular, prescribed, cut, options,
                                        report, chart, uv);
@@ -373,9 +374,7 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
      options.fall_back_to_circle_packing)
   {
     const std::string reason = std::string(Metric::name) + ": " + failure;
-    chart = Chart_report{chart.vertices, chart.faces, chart.boundary_loops, chart.genus};
-    chart.seam_edges = graph.number_of_seam_edges;
-    chart.homology_generators = graph.number_of_generators;
+    chart = before_optimum;
     failure = optimum_and_layout<Circle_packing_metric, Solver>(index, graph.is_seam, is_singular, prescribed,
                                                                 cut, options, report, chart, uv);
     chart.fallback_reason = reason;
