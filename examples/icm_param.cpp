@@ -4,7 +4,7 @@
 //
 //   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
-//             [--cones auto|N] [--cone VERTEX:DEGREES]...
+//             [--cones auto|N] [--cone VERTEX:DEGREES]... [--keep-overlaps]
 //
 // On any failure it prints one line on stderr naming the reason, exits non-zero and writes
 // no file (outputs are written to a temporary file and renamed into place).
@@ -46,7 +46,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 struct Arguments
 {
   std::string input, output, svg;
-  bool json = false;
+  bool json = false, keep_overlaps = false;
   std::string metric = ICM::Default_metric::name;
   int max_cones = -1;                     // -1: automatic
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
@@ -55,7 +55,7 @@ struct Arguments
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
   "[--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing] "
-  "[--cones auto|N] [--cone VERTEX:DEGREES]...\n";
+  "[--cones auto|N] [--cone VERTEX:DEGREES]... [--keep-overlaps]\n";
 
 int fail(const std::string& reason, int code = 1)
 {
@@ -89,6 +89,8 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
     }
     else if(a == "--json")
       args.json = true;
+    else if(a == "--keep-overlaps")
+      args.keep_overlaps = true;
     else if(a == "--cones")
     {
       std::string v;
@@ -227,6 +229,7 @@ int main(int argc, char** argv)
     return fail(unsupported);
 
   ICM::Surface_parameterization_options options;
+  options.remove_overlaps = !args.keep_overlaps;
   if(args.max_cones >= 0)
   {
     options.automatic_cones = args.max_cones > 0;
@@ -269,7 +272,7 @@ int main(int argc, char** argv)
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);
 
   // Totals over the charts, and the worst of each check.
-  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, moved = 0;
+  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, raw_overlaps = 0, pieces = 0, moved = 0;
   double curvature_error = 0, length_error = 0, seam_error = 0;
   std::string metrics, fallbacks;
   for(const ICM::Chart_report& c : report.charts)
@@ -279,6 +282,8 @@ int main(int argc, char** argv)
     loops += c.boundary_loops;
     newton = std::max(newton, c.newton_iterations);
     overlaps += c.overlapping_border_edges;
+    raw_overlaps += c.raw_overlapping_border_edges;
+    pieces += c.pieces;
     moved += c.moved_vertices;
     curvature_error = std::max(curvature_error, c.max_curvature_error);
     length_error = std::max(length_error, c.max_layout_length_error);
@@ -293,7 +298,7 @@ int main(int argc, char** argv)
   {
     std::cout << "{\"input\":" << json_string(args.input) << ",\"output\":" << json_string(args.output)
               << ",\"vertices\":" << num_vertices(mesh) << ",\"faces\":" << num_faces(mesh)
-              << ",\"charts\":" << report.charts.size()
+              << ",\"charts\":" << pieces << ",\"components\":" << report.charts.size()
               << ",\"boundary_loops\":" << loops << ",\"genus\":" << genus
               << ",\"cones\":" << cone_count << ",\"seam_edges\":" << seams.size()
               << ",\"layout\":\"propagation\""
@@ -302,6 +307,7 @@ int main(int argc, char** argv)
               << ",\"max_layout_length_error\":" << json_number(length_error)
               << ",\"seam_length_error\":" << json_number(seam_error)
               << ",\"overlapping_border_edges\":" << overlaps
+              << ",\"raw_overlapping_border_edges\":" << raw_overlaps
               << ",\"moved_vertices\":" << moved
               << ",\"metric\":" << json_string(metrics)
               << ",\"metric_fallback\":" << json_string(fallbacks)

@@ -59,6 +59,7 @@ Result run(Mesh& mesh, const std::string& what, const ICM::Surface_parameterizat
     EXPECT_EQ(c.flipped_faces, 0) << what;
     EXPECT_LT(c.seam_length_error, 1e-9) << what;
     EXPECT_LT(c.max_curvature_error, 1e-9) << what;
+    EXPECT_EQ(c.overlapping_border_edges, 0) << what;
   }
   for(Mesh::Halfedge_index h : halfedges(mesh))
   {
@@ -268,6 +269,94 @@ TEST(Surfaces, PolyhedronTakesTheSameCall)
   EXPECT_EQ(report.charts[0].homology_generators, 2);
   EXPECT_EQ(report.charts[0].flipped_faces, 0);
   EXPECT_EQ(ICM::measure_distortion_corner_uv(poly, uv).flipped_faces, 0u);
+}
+
+TEST(Surfaces, OverlappingStripIsCutAtItsNarrowestRung)
+{
+  // A strip of 50 quads laid out on an annulus over 1.25 turns: its last quarter turn lies
+  // on its first. The 3D strip is narrowest at rung 25, so the shortest seam that separates
+  // the two layers is that one rung, and each half (1.25 pi) is free of overlaps.
+  const int n = 50;
+  ICM::internal::Mesh_index strip;
+  std::vector<ICM::Uv> uv;
+  for(int i = 0; i <= n; ++i)
+  {
+    const double width = 1 + std::abs(i - n / 2) / double(n / 2), angle = 2.5 * M_PI * i / n;
+    strip.points.push_back({double(i), 0, 0});     // a_i, outer radius 3
+    strip.points.push_back({double(i), width, 0}); // b_i, inner radius 2
+    uv.push_back({3 * std::cos(angle), 3 * std::sin(angle)});
+    uv.push_back({2 * std::cos(angle), 2 * std::sin(angle)});
+  }
+  for(int i = 0; i < n; ++i)
+  {
+    strip.faces.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+    strip.faces.push_back({2 * i, 2 * i + 3, 2 * i + 1});
+  }
+  ASSERT_TRUE(ICM::internal::build_connectivity(strip).ok());
+  ICM::Cut_mesh cut = ICM::cut_mesh(strip, std::vector<char>(strip.number_of_edges(), 0));
+  ASSERT_TRUE(cut.ok());
+  ASSERT_GT(ICM::count_border_overlaps(cut.disk, uv).crossing_pairs, 0);
+  const std::vector<ICM::Uv> before = uv;
+  const ICM::internal::Mesh_index disk_before = cut.disk;
+
+  const ICM::Overlap_removal removal = ICM::remove_overlaps(strip, cut, uv);
+  ASSERT_TRUE(cut.ok()) << cut.status.message;
+  EXPECT_EQ(removal.pieces, 2);
+  EXPECT_EQ(removal.cut_edges, 1);
+  EXPECT_EQ(removal.overlapping_face_pairs, 0);
+  EXPECT_EQ(ICM::count_border_overlaps(cut.disk, uv).crossing_pairs, 0);
+  EXPECT_TRUE(ICM::overlapping_face_pairs(cut.disk, uv).empty());
+  // The seam is the rung between quads 24 and 25, with equal sides.
+  int seams = 0;
+  for(int e = 0; e < strip.number_of_edges(); ++e)
+    if(cut.disk_edges[e][1] >= 0)
+    {
+      ++seams;
+      EXPECT_EQ(strip.edges[e], (std::array<int, 2>{n, n + 1}));
+      auto side = [&](int d) {
+        const ICM::Uv &p = uv[cut.disk.edges[d][0]], &q = uv[cut.disk.edges[d][1]];
+        return std::hypot(p[0] - q[0], p[1] - q[1]);
+      };
+      EXPECT_NEAR(side(cut.disk_edges[e][0]), side(cut.disk_edges[e][1]), 1e-12);
+    }
+  EXPECT_EQ(seams, 1);
+  // Every face keeps its shape: its UV edges are those of the raw layout.
+  for(int f = 0; f < strip.number_of_faces(); ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const int a = cut.disk.faces[f][c], b = cut.disk.faces[f][(c + 1) % 3];
+      const int a0 = disk_before.faces[f][c], b0 = disk_before.faces[f][(c + 1) % 3];
+      EXPECT_NEAR(uv[b][0] - uv[a][0], before[b0][0] - before[a0][0], 1e-12);
+      EXPECT_NEAR(uv[b][1] - uv[a][1], before[b0][1] - before[a0][1], 1e-12);
+    }
+}
+
+TEST(Surfaces, HorseOverlapIsRemovedByDefaultAndKeptOnRequest)
+{
+  // The shared horse's free-boundary optimum swings its legs over each other (16 pairs of
+  // crossing border edges): by default the chart is cut into pieces that do not overlap,
+  // with the same distortion; `remove_overlaps = false` keeps the raw optimum.
+  if(!icm_test::shared_dir_exists())
+    GTEST_SKIP() << "shared meshes not present";
+  Mesh mesh = read(icm_test::shared_path("horse.obj"));
+  const Result removed = run(mesh, "horse");
+  ASSERT_EQ(removed.report.charts.size(), 1u);
+  const ICM::Chart_report& c = removed.report.charts[0];
+  EXPECT_GT(c.raw_overlapping_border_edges, 0);
+  EXPECT_GE(c.pieces, 2);
+  EXPECT_GE(c.overlap_cut_edges, 1);
+  EXPECT_EQ(c.seam_edges, c.overlap_cut_edges); // a disk: the only seams are the cuts
+
+  ICM::Surface_parameterization_options keep;
+  keep.remove_overlaps = false;
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:raw_uv", Point_2(NAN, NAN)).first;
+  const auto raw = ICM::parameterize(mesh, uv, keep);
+  ASSERT_EQ(raw.status, CGAL::Surface_mesh_parameterization::OK) << raw.message;
+  EXPECT_EQ(raw.charts[0].pieces, 1);
+  EXPECT_EQ(raw.charts[0].overlapping_border_edges, c.raw_overlapping_border_edges);
+  const ICM::Distortion_measures raw_measures = ICM::measure_distortion_corner_uv(mesh, uv);
+  EXPECT_NEAR(raw_measures.qc_mean, removed.measures.qc_mean, 1e-9);
+  EXPECT_NEAR(raw_measures.log_area_distortion, removed.measures.log_area_distortion, 1e-9);
 }
 
 } // namespace

@@ -298,6 +298,7 @@ private:
     std::vector<double> w;
     Curvature_map<M>& curvature = solver.curvature_map();
     curvature.evaluate(u, k, &w);
+    report.metric_summary = curvature.metric().summary(); // with the flips made during Newton
     const std::vector<double>& lengths = curvature.lengths();
     // The metric's own triangulation (the mesh's, or its intrinsic Delaunay one) is laid
     // out; it has the mesh's vertices, so its UVs are the mesh's.

@@ -1,0 +1,301 @@
+// Removing global overlaps by cutting a chart into pieces.
+//
+// A layout with no flipped face can still fold over itself: the free-boundary map of the
+// horse swings a leg over another one. The faces that land on top of each other come in
+// layers that are far apart on the surface. The chart is cut between two overlapping layers
+// along the shortest seam that separates them (a minimum s-t cut of the dual graph, edge
+// capacity = 3D edge length, source = one layer, sink = the other), and again in each piece
+// until no piece overlaps itself. The pieces keep their UVs up to a translation, so the
+// metric, the distortion and the flip count are exactly those of the raw optimum: the only
+// cost is seam length.
+//
+// The cut works on the chart's cut mesh (`Cut_mesh`, a disk or already several pieces): a
+// wedge whose faces end in different pieces gets one copy per piece, and the new seams join
+// the cut's surface edges, so seam lengths and wedges stay checkable as before.
+
+#ifndef ICM_OVERLAP_REMOVAL_H
+#define ICM_OVERLAP_REMOVAL_H
+
+#include <ICM/Border_overlaps.h>
+#include <ICM/Chart_packing.h>
+#include <ICM/Cut_graph.h>
+#include <ICM/Layout.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/push_relabel_max_flow.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace ICM {
+
+/// What `remove_overlaps` did to one chart.
+struct Overlap_removal
+{
+  int pieces = 1;              ///< pieces the chart was cut into (1: it did not overlap)
+  int cut_edges = 0;           ///< surface edges that became seams
+  int overlapping_face_pairs = 0; ///< face pairs still overlapping inside a piece (0 unless `max_cuts` ran out)
+};
+
+namespace internal {
+namespace overlaps {
+
+using Flow_traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+using Flow_graph = boost::adjacency_list<
+  boost::vecS, boost::vecS, boost::directedS, boost::no_property,
+  boost::property<boost::edge_capacity_t, double,
+                  boost::property<boost::edge_residual_capacity_t, double,
+                                  boost::property<boost::edge_reverse_t, Flow_traits::edge_descriptor>>>>;
+
+/// An arc a -> b of capacity `capacity`, with the zero-capacity reverse arc Boost's
+/// push-relabel keeps its residual flow on.
+inline void add_arc(Flow_graph& g, int a, int b, double capacity)
+{
+  const auto e = boost::add_edge(a, b, g).first;
+  const auto r = boost::add_edge(b, a, g).first;
+  boost::put(boost::edge_capacity, g, e, capacity);
+  boost::put(boost::edge_capacity, g, r, 0.0);
+  boost::put(boost::edge_reverse, g, e, r);
+  boost::put(boost::edge_reverse, g, r, e);
+}
+
+/// The faces of `piece_faces` on the source side of a minimum cut between `sources` and
+/// `sinks` in the dual graph of the piece (faces joined through their interior edges whose
+/// both faces are in the piece), each dual edge weighted by its 3D length.
+inline std::vector<int> source_side_of_minimum_cut(const Mesh_index& disk, const std::vector<int>& piece_of_face,
+                                                   const std::vector<int>& piece_faces,
+                                                   const std::vector<int>& sources, const std::vector<int>& sinks)
+{
+  const int piece = piece_of_face[piece_faces.front()];
+  std::vector<int> node_of_face(disk.number_of_faces(), -1);
+  for(std::size_t i = 0; i < piece_faces.size(); ++i)
+    node_of_face[piece_faces[i]] = static_cast<int>(i);
+  const int n = static_cast<int>(piece_faces.size()), s = n, t = n + 1;
+  Flow_graph g(n + 2);
+  double total = 0;
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+  {
+    const int f = disk.edge_faces[e][0], h = disk.edge_faces[e][1];
+    if(h < 0 || piece_of_face[f] != piece || piece_of_face[h] != piece)
+      continue;
+    const double length = std::sqrt(squared_distance(disk.points[disk.edges[e][0]], disk.points[disk.edges[e][1]]));
+    add_arc(g, node_of_face[f], node_of_face[h], length);
+    add_arc(g, node_of_face[h], node_of_face[f], length);
+    total += length;
+  }
+  const double unlimited = 2 * total + 1;
+  for(int f : sources)
+    add_arc(g, s, node_of_face[f], unlimited);
+  for(int f : sinks)
+    add_arc(g, node_of_face[f], t, unlimited);
+  boost::push_relabel_max_flow(g, s, t);
+
+  // The source side: what the source still reaches through arcs with residual capacity.
+  const auto residual = boost::get(boost::edge_residual_capacity, g);
+  std::vector<char> reached(n + 2, 0);
+  std::vector<int> stack{s};
+  reached[s] = 1;
+  while(!stack.empty())
+  {
+    const int a = stack.back();
+    stack.pop_back();
+    for(auto arc : boost::make_iterator_range(boost::out_edges(a, g)))
+    {
+      const int b = static_cast<int>(boost::target(arc, g));
+      if(!reached[b] && residual[arc] > 1e-12 * unlimited)
+      {
+        reached[b] = 1;
+        stack.push_back(b);
+      }
+    }
+  }
+  std::vector<int> side;
+  for(int i = 0; i < n; ++i)
+    if(reached[i])
+      side.push_back(piece_faces[i]);
+  return side;
+}
+
+/// Renumbers `piece_of_face` so that each piece is one edge-connected set of faces.
+inline int connected_pieces(const Mesh_index& disk, std::vector<int>& piece_of_face)
+{
+  cutting::Union_find sets(disk.number_of_faces());
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+  {
+    const int f = disk.edge_faces[e][0], h = disk.edge_faces[e][1];
+    if(h >= 0 && piece_of_face[f] == piece_of_face[h])
+      sets.unite(f, h);
+  }
+  std::map<int, int> number_of_root;
+  for(int f = 0; f < disk.number_of_faces(); ++f)
+    piece_of_face[f] = number_of_root.emplace(sets.find(f), static_cast<int>(number_of_root.size())).first->second;
+  return static_cast<int>(number_of_root.size());
+}
+
+/// One pair of layers to separate inside a piece: the overlapping faces of the piece grouped
+/// into edge-connected layers; the two layers with the most overlapping face pairs between
+/// them (one face against the other when a layer overlaps itself).
+inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(
+  const Mesh_index& disk, const std::vector<int>& piece_of_face, const std::vector<std::pair<int, int>>& pairs)
+{
+  std::vector<char> overlapping(disk.number_of_faces(), 0);
+  for(const auto& [f, g] : pairs)
+    overlapping[f] = overlapping[g] = 1;
+  cutting::Union_find layers(disk.number_of_faces());
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+  {
+    const int f = disk.edge_faces[e][0], h = disk.edge_faces[e][1];
+    if(h >= 0 && overlapping[f] && overlapping[h] && piece_of_face[f] == piece_of_face[h])
+      layers.unite(f, h);
+  }
+  std::map<std::pair<int, int>, int> count;
+  for(const auto& [f, g] : pairs)
+  {
+    const int a = layers.find(f), b = layers.find(g);
+    ++count[{std::min(a, b), std::max(a, b)}];
+  }
+  const auto strongest = std::max_element(count.begin(), count.end(), [](const auto& x, const auto& y) {
+    return x.second < y.second;
+  })->first;
+  std::vector<int> first, second;
+  if(strongest.first == strongest.second)
+  {
+    for(const auto& [f, g] : pairs)
+      if(layers.find(f) == strongest.first)
+        return {{f}, {g}};
+  }
+  for(int f = 0; f < disk.number_of_faces(); ++f)
+    if(overlapping[f])
+    {
+      if(layers.find(f) == strongest.first)
+        first.push_back(f);
+      else if(layers.find(f) == strongest.second)
+        second.push_back(f);
+    }
+  return {first, second};
+}
+
+/// Piece of each face of `disk` such that no two faces of a piece overlap in `uv`, by at most
+/// `max_cuts` minimum cuts. The overlapping pairs are found once: the pieces keep their
+/// UVs, so a cut only decides which pairs still share a piece. `remaining` receives the pairs
+/// left inside pieces.
+inline std::vector<int> pieces_without_overlaps(const Mesh_index& disk, const std::vector<Uv>& uv, int max_cuts,
+                                                int& remaining)
+{
+  std::vector<int> piece_of_face(disk.number_of_faces(), 0);
+  const std::vector<std::pair<int, int>> all_pairs = overlapping_face_pairs(disk, uv);
+  std::vector<std::pair<int, int>> pairs = all_pairs;
+  for(int cuts = 0; !pairs.empty() && cuts < max_cuts; ++cuts)
+  {
+    // The piece of the first pair still overlapping, its faces, and its two layers.
+    const int piece = piece_of_face[pairs.front().first];
+    std::vector<std::pair<int, int>> in_piece;
+    for(const auto& pair : pairs)
+      if(piece_of_face[pair.first] == piece)
+        in_piece.push_back(pair);
+    std::vector<int> faces;
+    for(int f = 0; f < disk.number_of_faces(); ++f)
+      if(piece_of_face[f] == piece)
+        faces.push_back(f);
+    const auto [sources, sinks] = layers_to_separate(disk, piece_of_face, in_piece);
+    const int new_piece = 1 + *std::max_element(piece_of_face.begin(), piece_of_face.end());
+    for(int f : source_side_of_minimum_cut(disk, piece_of_face, faces, sources, sinks))
+      piece_of_face[f] = new_piece;
+    connected_pieces(disk, piece_of_face);
+    pairs.clear();
+    for(const auto& pair : all_pairs)
+      if(piece_of_face[pair.first] == piece_of_face[pair.second])
+        pairs.push_back(pair);
+  }
+  remaining = static_cast<int>(pairs.size());
+  return piece_of_face;
+}
+
+} // namespace overlaps
+} // namespace internal
+
+/// Cuts the chart `cut` (the cut mesh of `surface`, laid out as `uv`, one UV per wedge) into
+/// pieces none of which overlaps itself, and places the pieces side by side. `cut` and `uv`
+/// are rewritten: every wedge whose faces end in different pieces is split, the separating
+/// surface edges become seams (`disk_edges`), and each piece keeps its shape. At most
+/// `max_cuts` cuts are made; what still overlaps then is counted in the result.
+inline Overlap_removal remove_overlaps(const internal::Mesh_index& surface, Cut_mesh& cut, std::vector<Uv>& uv,
+                                       int max_cuts = 64)
+{
+  using namespace internal;
+  Overlap_removal result;
+  const Mesh_index& disk = cut.disk;
+  std::vector<int> piece_of_face = overlaps::pieces_without_overlaps(disk, uv, max_cuts, result.overlapping_face_pairs);
+  result.pieces = 1 + *std::max_element(piece_of_face.begin(), piece_of_face.end());
+  if(result.pieces == 1)
+    return result;
+
+  // One wedge per (wedge, piece).
+  Cut_mesh split;
+  std::map<std::pair<int, int>, int> wedge_of;
+  std::vector<Uv> split_uv;
+  std::vector<int> piece_of_wedge;
+  split.disk.faces.resize(disk.number_of_faces());
+  for(int f = 0; f < disk.number_of_faces(); ++f)
+    for(int c = 0; c < 3; ++c)
+    {
+      const int w = disk.faces[f][c];
+      const auto [it, added] = wedge_of.emplace(std::make_pair(w, piece_of_face[f]), static_cast<int>(split_uv.size()));
+      if(added)
+      {
+        split.disk.points.push_back(disk.points[w]);
+        split.surface_vertex.push_back(cut.surface_vertex[w]);
+        split_uv.push_back(uv[w]);
+        piece_of_wedge.push_back(piece_of_face[f]);
+      }
+      split.disk.faces[f][c] = it->second;
+    }
+  const Index_status built = build_connectivity(split.disk);
+  split.status = cut.status;
+  if(!built.ok())
+    split.status = {false, "the pieces of an overlapping chart: " + built.message};
+
+  // Disk edges keep their surface edge; a surface edge has two disk edges on every seam.
+  split.surface_edge.assign(split.disk.number_of_edges(), -1);
+  for(int f = 0; f < disk.number_of_faces(); ++f)
+    for(int c = 0; c < 3; ++c)
+      split.surface_edge[split.disk.face_edges[f][c]] = cut.surface_edge[disk.face_edges[f][c]];
+  split.disk_edges.assign(surface.number_of_edges(), {-1, -1});
+  for(int e = 0; e < split.disk.number_of_edges(); ++e)
+  {
+    const int s = split.surface_edge[e];
+    const bool first_side = split.disk.edge_faces[e][0] == surface.edge_faces[s][0] ||
+                            split.disk.edge_faces[e][1] == surface.edge_faces[s][0];
+    if(split.disk.edge_faces[e][1] >= 0)
+      split.disk_edges[s][0] = e; // off the cut: one disk edge for both faces
+    else
+      split.disk_edges[s][first_side ? 0 : 1] = e;
+  }
+  for(int s = 0; s < surface.number_of_edges(); ++s)
+    if(cut.disk_edges[s][1] < 0 && split.disk_edges[s][1] >= 0)
+      ++result.cut_edges;
+
+  // The pieces side by side, each with its own UVs.
+  std::vector<Chart_box> boxes(result.pieces, Chart_box{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  for(std::size_t w = 0; w < split_uv.size(); ++w)
+  {
+    Chart_box& b = boxes[piece_of_wedge[w]];
+    b = {std::min(b[0], split_uv[w][0]), std::min(b[1], split_uv[w][1]),
+         std::max(b[2], split_uv[w][0]), std::max(b[3], split_uv[w][1])};
+  }
+  const std::vector<Uv> offsets = shelf_pack(boxes);
+  for(std::size_t w = 0; w < split_uv.size(); ++w)
+    split_uv[w] = {split_uv[w][0] + offsets[piece_of_wedge[w]][0], split_uv[w][1] + offsets[piece_of_wedge[w]][1]};
+  cut = std::move(split);
+  uv = std::move(split_uv);
+  return result;
+}
+
+} // namespace ICM
+
+#endif // ICM_OVERLAP_REMOVAL_H
