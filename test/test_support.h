@@ -149,6 +149,20 @@ private:
   fs::path path_;
 };
 
+/// Newton's quadratic convergence: once in the quadratic regime (full steps, r < 1e-2),
+/// r_{k+1} <= C r_k^2 on every step before the residual reaches rounding; at least one such step.
+inline void expect_quadratic_convergence(const std::vector<double>& r)
+{
+  int quadratic_steps = 0;
+  for(std::size_t i = 0; i + 1 < r.size(); ++i)
+    if(r[i] < 1e-2 && r[i + 1] > 1e-12)
+    {
+      EXPECT_LT(r[i + 1], 50.0 * r[i] * r[i]) << "step " << i;
+      ++quadratic_steps;
+    }
+  EXPECT_GE(quadratic_steps, 1);
+}
+
 } // namespace icm_test
 
 #endif // ICM_TEST_SUPPORT_H
