@@ -78,9 +78,10 @@ std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metri
 struct Cone_options
 {
   /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
-  /// of its neighbourhood changes by less than exp(2 * this). 1.5 keeps area factors within
-  /// e^3 ~ 20 (measured trade-off: doc/benchmarks.md).
-  double max_log_scale = 1.5;
+  /// of its neighbourhood changes by less than exp(2 * this). 0.6 keeps area factors within
+  /// e^1.2 ~ 3.3; on the shared meshes it took sphere966's log area from 0.22 (1.5) to
+  /// 0.028 and three_peaks' QC from 1.16 to 1.09, for more cones (doc/benchmarks.md).
+  double max_log_scale = 0.6;
   /// At most this many interior cones (a user limit); 0 means none.
   int max_cones = 32;
   Newton_options newton;

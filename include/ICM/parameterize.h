@@ -179,6 +179,72 @@ inline double seam_length_error(const Cut_mesh& cut, const std::vector<Uv>& uv)
   return worst;
 }
 
+/// The two wedges of every flat interior vertex that a seam passes through, each with the
+/// rigid motion that takes its twin's UVs into its frame (`Seam_twin`). The motion is read
+/// from each of the vertex's two seam edges; where they disagree the vertex is a cone on the
+/// seam (its sides turn by its angle defect) and gets no twin.
+inline std::vector<Seam_twin> seam_twins(const Mesh_index& index, const Cut_mesh& cut, const std::vector<Uv>& uv)
+{
+  const int nw = static_cast<int>(cut.surface_vertex.size());
+  std::vector<Seam_twin> twins(nw);
+  std::vector<int> wedges_of(index.number_of_vertices(), 0);
+  for(int v : cut.surface_vertex)
+    ++wedges_of[v];
+  // Per wedge, the motions found so far (at most two: one per seam edge).
+  std::vector<std::array<Seam_twin, 2>> found(nw);
+  std::vector<int> count(nw, 0);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const std::array<int, 2>& sides = cut.disk_edges[e];
+    if(sides[1] < 0)
+      continue;
+    for(int end = 0; end < 2; ++end)
+    {
+      const int v = index.edges[e][end];
+      if(wedges_of[v] != 2 || index.is_boundary_vertex[v])
+        continue;
+      // Side s: the wedge of v and the wedge of the other end.
+      std::array<int, 2> at{}, other{};
+      for(int s = 0; s < 2; ++s)
+      {
+        const auto& d = cut.disk.edges[sides[s]];
+        const bool first_is_v = cut.surface_vertex[d[0]] == v;
+        at[s] = first_is_v ? d[0] : d[1];
+        other[s] = first_is_v ? d[1] : d[0];
+      }
+      for(int s = 0; s < 2; ++s)
+      {
+        const int w = at[s], t = at[1 - s];
+        const double angle = std::atan2(uv[other[s]][1] - uv[w][1], uv[other[s]][0] - uv[w][0]) -
+                             std::atan2(uv[other[1 - s]][1] - uv[t][1], uv[other[1 - s]][0] - uv[t][0]);
+        Seam_twin m;
+        m.wedge = t;
+        m.c = std::cos(angle);
+        m.s = std::sin(angle);
+        const Uv rotated = m.to_this(uv[t]);
+        m.tx = uv[w][0] - rotated[0];
+        m.ty = uv[w][1] - rotated[1];
+        if(count[w] < 2)
+          found[w][count[w]] = m;
+        ++count[w];
+      }
+    }
+  }
+  for(int w = 0; w < nw; ++w)
+  {
+    if(count[w] != 2)
+      continue;
+    // Both motions must take the twin's star to the same place: compare them at the twin.
+    const Seam_twin& a = found[w][0];
+    const Seam_twin& b = found[w][1];
+    const Uv p = a.to_this(uv[a.wedge]), q = b.to_this(uv[b.wedge]);
+    const double turn = std::abs(std::atan2(a.s * b.c - a.c * b.s, a.c * b.c + a.s * b.s));
+    if(turn < 1e-6 && std::hypot(p[0] - q[0], p[1] - q[1]) <= 1e-6 * std::hypot(p[0], p[1]) + 1e-300)
+      twins[w] = a;
+  }
+  return twins;
+}
+
 /// The optimum in the class of `Metric` for the singular set and its layout on `cut`,
 /// checked: steps 5 and 7 of one component. Returns the failure reason, or empty.
 template <class Metric, class Solver>
@@ -240,14 +306,16 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
       uv[w] = intrinsic_uv[match[w]];
     if(check.flipped_faces == 0)
     {
-      // A wedge may move when it is its vertex's only one (not on a seam).
+      // A wedge may move when it is its vertex's only one (not on a seam), or with its twin
+      // across a seam through a flat vertex.
       std::vector<int> wedges_of(nv, 0);
       for(int v : cut.surface_vertex)
         ++wedges_of[v];
+      const std::vector<Seam_twin> twins = seam_twins(index, cut, uv);
       std::vector<char> is_movable(cut.surface_vertex.size());
       for(std::size_t w = 0; w < is_movable.size(); ++w)
-        is_movable[w] = wedges_of[cut.surface_vertex[w]] == 1;
-      chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv, is_movable);
+        is_movable[w] = wedges_of[cut.surface_vertex[w]] == 1 || twins[w].wedge >= 0;
+      chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv, is_movable, twins);
     }
     chart.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(cut.disk, uv));
   }
