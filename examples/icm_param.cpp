@@ -4,13 +4,15 @@
 //
 //   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
-//             [--cones auto|N] [--cone VERTEX:DEGREES]... [--keep-overlaps]
+//             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
+//             [--keep-overlaps]
 //
 // On any failure it prints one line on stderr naming the reason, exits non-zero and writes
 // no file (outputs are written to a temporary file and renamed into place).
 
 #include <ICM/Distortion.h>
 #include <ICM/IO/Uv_mesh.h>
+#include <ICM/IO/read_seam_selection.h>
 #include <ICM/IO/write_uv_obj.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
@@ -45,7 +47,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 struct Arguments
 {
-  std::string input, output, svg;
+  std::string input, output, svg, seams;
   bool json = false, keep_overlaps = false;
   std::string metric = ICM::Default_metric::name;
   int max_cones = -1;                     // -1: automatic
@@ -55,7 +57,7 @@ struct Arguments
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
   "[--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing] "
-  "[--cones auto|N] [--cone VERTEX:DEGREES]... [--keep-overlaps]\n";
+  "[--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n";
 
 int fail(const std::string& reason, int code = 1)
 {
@@ -85,6 +87,11 @@ bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
     else if(a == "--svg")
     {
       if(!value(args.svg))
+        return false;
+    }
+    else if(a == "--seams")
+    {
+      if(!value(args.seams))
         return false;
     }
     else if(a == "--json")
@@ -244,11 +251,14 @@ int main(int argc, char** argv)
                   std::to_string(num_vertices(mesh)) + " vertices");
     cones[Mesh::Vertex_index(static_cast<Mesh::size_type>(vertex))] = 2 * M_PI - degrees * M_PI / 180;
   }
+  std::vector<Mesh::Edge_index> user_seams;
+  if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, user_seams, error))
+    return fail(error);
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
   std::vector<Mesh::Edge_index> seams;
   ICM::Surface_parameterization_report report;
   auto run = [&](auto metric) {
-    return ICM::parameterize<decltype(metric)>(mesh, uvmap, options, cones, &seams);
+    return ICM::parameterize<decltype(metric)>(mesh, uvmap, options, cones, &seams, user_seams);
   };
   report = args.metric == ICM::Circle_packing_metric::name      ? run(ICM::Circle_packing_metric())
            : args.metric == ICM::Inversive_distance_metric::name ? run(ICM::Inversive_distance_metric())

@@ -233,6 +233,27 @@ TEST(Cli, ClosedMeshIsCutThroughCones)
   EXPECT_EQ(vt, v + std::stoi(json_value(json, "seam_edges")) - 1);
 }
 
+TEST(Cli, UserSeamsFromASelectionFile)
+{
+  // The bundled selection: a star of 44 edges whose 4 ends and centre become the cones.
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj --json --seams " +
+                                    quote(data_path("sphere966.selection.txt")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string json = lines_of(r.out).at(0);
+  EXPECT_EQ(json_value(json, "seam_edges"), "44");
+  EXPECT_EQ(json_value(json, "cones"), "5");
+  EXPECT_EQ(json_value(json, "flipped_faces"), "0");
+  EXPECT_LT(std::stod(json_value(json, "seam_length_error")), 1e-9);
+
+  // A seam file that names a pair of vertices without an edge: refused, nothing written.
+  Sandbox bad;
+  write_text(bad.work() / "bad.selection.txt", "\n\n0 1 0 500\n");
+  const Sandbox::Result refused =
+    bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt");
+  expect_clean_failure(bad, refused, "line 3", {"bad.selection.txt"});
+}
+
 TEST(Cli, ClosedSphereWithoutConesIsRefused)
 {
   Sandbox box;

@@ -2,6 +2,7 @@
 // the OBJ and SVG writers, and the atomic file replacement they rely on.
 
 #include <ICM/IO/Uv_mesh.h>
+#include <ICM/IO/read_seam_selection.h>
 #include <ICM/IO/write_uv_obj.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/internal/Atomic_file.h>
@@ -225,6 +226,59 @@ ICM::IO::Uv_mesh grid_uv_mesh()
   build_grid(sm);
   auto uv = xy_uvs(sm);
   return ICM::IO::make_uv_mesh(sm, boost::make_assoc_property_map(uv));
+}
+
+// ------------------------------------------------------------------------------------------
+// read_seam_selection
+
+TEST(IoSeamSelection, EdgesOnTheThirdLineAndLaterOnesEachOnce)
+{
+  Surface_mesh sm;
+  build_grid(sm); // vertex i at (i % 3, i / 3)
+  Temp_dir dir("icm_seams");
+  write_text(dir.file("a.selection.txt"), "4\n\n0 1 1 2\n2 1 4 1\r\n");
+  std::vector<Surface_mesh::Edge_index> seams;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::read_seam_selection(dir.file("a.selection.txt"), sm, seams, error)) << error;
+  ASSERT_EQ(seams.size(), 3u);
+  const std::pair<int, int> expected[] = {{0, 1}, {1, 2}, {1, 4}};
+  for(int i = 0; i < 3; ++i)
+  {
+    const int a = static_cast<int>(source(seams[i], sm)), b = static_cast<int>(target(seams[i], sm));
+    EXPECT_EQ(std::make_pair(std::min(a, b), std::max(a, b)), expected[i]);
+  }
+}
+
+TEST(IoSeamSelection, EveryMalformedFileIsRefusedWithItsReason)
+{
+  Surface_mesh sm;
+  build_grid(sm);
+  Temp_dir dir("icm_seams");
+  const std::pair<std::string, std::string> cases[] = {
+    {"\n", "no third line"},
+    {"\n\n0 x\n", "line 3, value 2: 'x' is not a vertex index"},
+    {"\n\n0 1\n-1 0\n", "line 4, value 1: '-1' is not a vertex index"},
+    {"\n\n0 1.5\n", "'1.5' is not a vertex index"},
+    {"\n\n0 99\n", "vertex 99 out of range (the mesh has 9 vertices)"},
+    {"\n\n0 99999999999999999999999\n", "is not a vertex index"},
+    {"\n\n0 8\n", "vertices 0 and 8 are not joined by an edge"},
+    {"\n\n0 1 2\n", "odd number"},
+    {"\n\n\n", "names no edge"},
+  };
+  int n = 0;
+  for(const auto& [text, reason] : cases)
+  {
+    const std::string path = dir.file("case" + std::to_string(n++) + ".selection.txt");
+    write_text(path, text);
+    std::vector<Surface_mesh::Edge_index> seams;
+    std::string error;
+    EXPECT_FALSE(ICM::IO::read_seam_selection(path, sm, seams, error)) << text;
+    EXPECT_NE(error.find(reason), std::string::npos) << "got: " << error;
+  }
+  std::vector<Surface_mesh::Edge_index> seams;
+  std::string error;
+  EXPECT_FALSE(ICM::IO::read_seam_selection(dir.file("missing.selection.txt"), sm, seams, error));
+  EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
 }
 
 // ------------------------------------------------------------------------------------------

@@ -4,6 +4,7 @@
 // `CGAL::Seam_mesh` and on `Polyhedron_3`.
 
 #include <ICM/Distortion.h>
+#include <ICM/IO/read_seam_selection.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Polyhedron_3.h>
@@ -19,6 +20,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,11 +48,12 @@ struct Result
 /// Parameterizes and checks what every result must satisfy: success, every chart without
 /// flipped faces, crossing borders or unequal seam sides, every corner with a finite UV.
 Result run(Mesh& mesh, const std::string& what, const ICM::Surface_parameterization_options& options = {},
-           const std::map<Mesh::Vertex_index, double>& cones = {})
+           const std::map<Mesh::Vertex_index, double>& cones = {},
+           const std::vector<Mesh::Edge_index>& user_seams = {})
 {
   auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:test_uv", Point_2(NAN, NAN)).first;
   Result r;
-  r.report = ICM::parameterize(mesh, uv, options, cones, &r.seams);
+  r.report = ICM::parameterize(mesh, uv, options, cones, &r.seams, user_seams);
   EXPECT_EQ(r.report.status, CGAL::Surface_mesh_parameterization::OK) << what << ": " << r.report.message;
   if(r.report.status != CGAL::Surface_mesh_parameterization::OK)
     return r;
@@ -234,6 +237,48 @@ TEST(Surfaces, BadConesAreRefusedWithAReason)
   Mesh empty;
   auto uv3 = empty.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
   EXPECT_EQ(ICM::parameterize(empty, uv3).status, CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH);
+}
+
+TEST(Surfaces, UserSeamsFromASelectionFileAreTakenAsGiven)
+{
+  // A star of four shortest paths from the sphere's top to four far vertices (a CGAL
+  // selection file): the cut is exactly these 44 edges, and its four ends and its centre
+  // (seam degree 4) are the only cones, their angles left to the optimum.
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  std::vector<Mesh::Edge_index> user_seams;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::read_seam_selection(icm_test::data_path("sphere966.selection.txt"), mesh, user_seams, error))
+    << error;
+  ASSERT_EQ(user_seams.size(), 44u);
+  const Result r = run(mesh, "sphere966 with user seams", {}, {}, user_seams);
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  EXPECT_EQ(std::set<Mesh::Edge_index>(r.seams.begin(), r.seams.end()),
+            std::set<Mesh::Edge_index>(user_seams.begin(), user_seams.end()));
+  EXPECT_EQ(c.cones.size(), 5u);
+  EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
+  for(double k : c.cone_curvatures)
+    EXPECT_LT(k, 2 * M_PI) << "a cone of angle <= 0";
+}
+
+TEST(Surfaces, UserSeamsThatDoNotCutADiskAreRefused)
+{
+  Mesh eight = read(icm_test::data_path("eight.off"));
+  auto uv = eight.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  // One edge of a genus-2 surface: a slit, the genus stays.
+  const auto slit = ICM::parameterize(eight, uv, {}, {}, nullptr, {*edges(eight).begin()});
+  EXPECT_NE(slit.status, CGAL::Surface_mesh_parameterization::OK);
+  EXPECT_NE(slit.message.find("genus"), std::string::npos) << slit.message;
+
+  Mesh disk = read(icm_test::data_path("nefertiti.off"));
+  auto uv2 = disk.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  Mesh::Edge_index border_edge;
+  for(Mesh::Edge_index e : edges(disk))
+    if(is_border(e, disk))
+      border_edge = e;
+  const auto border = ICM::parameterize(disk, uv2, {}, {}, nullptr, {border_edge});
+  EXPECT_EQ(border.status, CGAL::Surface_mesh_parameterization::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(border.message.find("border edge"), std::string::npos) << border.message;
 }
 
 TEST(Surfaces, ResultReadsBackThroughASeamMesh)

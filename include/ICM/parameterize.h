@@ -336,10 +336,12 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
 }
 
 /// One component: cones, optimum, cut, layout, checks. `uv` receives one UV per wedge of
-/// `cut.disk`. Returns the failure reason, or empty.
+/// `cut.disk`. `user_seams` (per edge; empty: none) are taken as the cut as given, their ends
+/// and branch points singular with a free angle, and no cone is added. Returns the failure
+/// reason, or empty.
 template <class Metric, class Solver>
 std::string parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
-                                   const std::vector<double>& prescribed,
+                                   const std::vector<double>& prescribed, const std::vector<char>& user_seams,
                                    const Surface_parameterization_options& options,
                                    Surface_parameterization_report& report, Chart_report& chart,
                                    Cut_mesh& cut, std::vector<Uv>& uv)
@@ -373,7 +375,21 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
       return "the cone curvatures sum to " + std::to_string(sum) + ", Gauss-Bonnet needs 2 pi chi = " +
              std::to_string(2 * M_PI * chi) + " (chi = " + std::to_string(chi) + ")";
   }
-  if(options.automatic_cones && options.cones.max_cones > 0)
+  const bool has_user_seams = !user_seams.empty();
+  if(has_user_seams)
+  {
+    // A seam through a flat vertex passes it (two seam edges); anywhere else the two sides
+    // meet at an angle the flat metric cannot have, so the vertex must be singular.
+    std::vector<int> seam_degree(nv, 0);
+    for(int e = 0; e < index.number_of_edges(); ++e)
+      if(user_seams[e])
+        for(int v : index.edges[e])
+          ++seam_degree[v];
+    for(int v = 0; v < nv; ++v)
+      if(seam_degree[v] != 0 && seam_degree[v] != 2)
+        is_singular[v] = 1;
+  }
+  if(options.automatic_cones && options.cones.max_cones > 0 && !has_user_seams)
   {
     const Circle_packing_metric packing(index);
     const Metric metric = make_metric<Metric>(index, std::vector<char>(index.number_of_edges(), 0));
@@ -445,7 +461,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   }
   if(closed && chi == 0 && interior_singular == 1)
     std::fill(is_cone.begin(), is_cone.end(), 0);
-  const Cut_graph_result graph = cut_graph(index, is_cone);
+  const Cut_graph_result graph =
+    has_user_seams ? cut_graph_from_seams(index, user_seams, is_cone) : cut_graph(index, is_cone);
   if(!graph.ok())
     return graph.status.message;
   chart.seam_edges = graph.number_of_seam_edges;
@@ -504,13 +521,18 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 /// \param user_cones vertices that must be singular: with a curvature 2 pi - angle, or NaN
 ///        to leave the angle to the optimum (Thm 3.5)
 /// \param seam_edges if not null, receives the seam edges of every chart
+/// \param user_seams the user's own cut (as a CGAL selection file gives it): a component with
+///        any of these edges is cut along exactly them (they must cut it into one disk through
+///        every user cone), their ends and branch points become singular with a free angle
+///        and no automatic cone is added; a component without any is cut as usual
 template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class TriangleMesh,
           class HalfedgeUVMap>
 Surface_parameterization_report parameterize(
   const TriangleMesh& mesh, HalfedgeUVMap uv_map,
   const Surface_parameterization_options& options = Surface_parameterization_options(),
   const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones = {},
-  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr)
+  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr,
+  const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams = {})
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
@@ -551,6 +573,16 @@ Surface_parameterization_report parameterize(
                                              std::to_string(curvature) + " >= 2 pi)");
   }
 
+  auto is_user_seam = get(CGAL::dynamic_edge_property_t<bool>(), mesh);
+  for(auto e : edges(mesh))
+    put(is_user_seam, e, false);
+  for(auto e : user_seams)
+  {
+    if(is_border(e, mesh))
+      return finish(ERROR_WRONG_PARAMETER, "a user seam is a border edge (the border is cut already)");
+    put(is_user_seam, e, true);
+  }
+
   std::vector<std::vector<Uv>> chart_uvs(components);
   std::vector<Cut_mesh> cuts(components);
   std::vector<std::vector<face_descriptor>> chart_faces(components);
@@ -578,8 +610,18 @@ Surface_parameterization_report parameterize(
         prescribed[v] = it->second;
       }
     }
+    std::vector<char> component_seams;
+    if(!user_seams.empty())
+    {
+      component_seams.assign(index.number_of_edges(), 0);
+      for(int e = 0; e < index.number_of_edges(); ++e)
+        component_seams[e] =
+          get(is_user_seam, edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
+      if(std::find(component_seams.begin(), component_seams.end(), 1) == component_seams.end())
+        component_seams.clear();
+    }
     const std::string failure = internal::parameterize_component<Metric, Solver>(
-      index, is_user_cone, prescribed, options, report, chart, cuts[c], chart_uvs[c]);
+      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c]);
     report.charts.push_back(chart);
     if(!failure.empty())
       return finish(failure.find("flipped") != std::string::npos ||
