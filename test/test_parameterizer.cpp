@@ -3,6 +3,7 @@
 // meshes of the shared data set, nearly closed surfaces, and every kind of bad input.
 
 #include <ICM/Distortion.h>
+#include <ICM/IO/read_seam_selection.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -474,6 +475,93 @@ TEST(ParameterizerDropIn, SeamMeshOfClosedSphere)
   }
   EXPECT_EQ(copies[path.front()].size(), 1u);
   EXPECT_EQ(copies[path.back()].size(), 1u);
+}
+
+/// max over the seam edges of the relative difference between the UV lengths of their two
+/// sides in a Seam_mesh parameterized into `uv_pm` (one UV per seam-mesh vertex), and max
+/// over the seam vertices passed by exactly two seam edges of |2 pi - their UV angle sum over
+/// both sides|: zero when the sides are one flat surface cut open.
+template <class UvMap>
+std::pair<double, double> seam_mismatch(const Seam_mesh& mesh, const Surface_mesh& sm, UvMap uv_pm)
+{
+  using Seam_halfedge = boost::graph_traits<Seam_mesh>::halfedge_descriptor;
+  auto uv_length = [&](SM_halfedge h) {
+    const Seam_halfedge sh(h);
+    return std::sqrt(CGAL::squared_distance(get(uv_pm, target(sh, mesh)), get(uv_pm, source(sh, mesh))));
+  };
+  double worst_length = 0;
+  std::map<SM_vertex, int> seam_degree;
+  for(SM_edge e : edges(sm))
+    if(mesh.has_on_seam(e))
+    {
+      const double a = uv_length(halfedge(e, sm)), b = uv_length(opposite(halfedge(e, sm), sm));
+      worst_length = std::max(worst_length, std::abs(a - b) / std::max(a, b));
+      ++seam_degree[source(e, sm)];
+      ++seam_degree[target(e, sm)];
+    }
+  std::map<SM_vertex, double> angle_sum;
+  for(SM_halfedge h : halfedges(sm))
+    if(!is_border(h, sm))
+    {
+      const Seam_halfedge sh(h);
+      const Point_2 p = get(uv_pm, target(sh, mesh)), a = get(uv_pm, source(sh, mesh)),
+                    b = get(uv_pm, target(next(sh, mesh), mesh));
+      const Kernel::Vector_2 to_a = a - p, to_b = b - p;
+      angle_sum[target(h, sm)] += std::atan2(std::abs(CGAL::determinant(to_a, to_b)), to_a * to_b);
+    }
+  double worst_angle = 0;
+  for(const auto& [v, degree] : seam_degree)
+    if(degree == 2)
+      worst_angle = std::max(worst_angle, std::abs(angle_sum[v] - 2 * M_PI));
+  return {worst_length, worst_angle};
+}
+
+TEST(ParameterizerDropIn, SeamMeshSeamsReadAsBorderOrAsCuts)
+{
+  // The bundled star of 44 seam edges on sphere966. Read as border (CGAL's reading), the two
+  // sides of a seam are free border: one length (u - u0 is one constant on the border), but
+  // each side turns its own way. Read as cuts of the sphere, every vertex inside a seam is
+  // flat across both sides, and the star's 4 ends and its centre are the only cones.
+  Surface_mesh sm;
+  read_mesh(data_path("sphere966.off"), sm);
+  std::vector<SM_edge> star;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::read_seam_selection(data_path("sphere966.selection.txt"), sm, star, error)) << error;
+  Seam_edge_pmap seam_edges = sm.add_property_map<SM_edge, bool>("e:on_seam", false).first;
+  Seam_vertex_pmap seam_vertices = sm.add_property_map<SM_vertex, bool>("v:on_seam", false).first;
+  Seam_mesh mesh(sm, seam_edges, seam_vertices);
+  for(SM_edge e : star)
+    ASSERT_TRUE(mesh.add_seam(source(e, sm), target(e, sm)));
+  boost::graph_traits<Seam_mesh>::halfedge_descriptor bhd;
+  for(auto h : halfedges(mesh))
+    if(is_border(h, mesh))
+      bhd = h;
+
+  for(const ICM::Seam_reading reading : {ICM::Seam_reading::Border, ICM::Seam_reading::Cut})
+  {
+    const bool as_cut = reading == ICM::Seam_reading::Cut;
+    const std::string what = as_cut ? "seams as cuts" : "seams as border";
+    auto uv_pm = sm.add_property_map<SM_halfedge, Point_2>(as_cut ? "h:uv_cut" : "h:uv_border",
+                                                           Point_2(nan_value, nan_value)).first;
+    ICM::Parameterization_options options;
+    options.seams = reading;
+    Parameterizer<Seam_mesh> parameterizer(options);
+    Outcome run;
+    run.status = SMP::parameterize(mesh, parameterizer, bhd, uv_pm);
+    run.report = parameterizer.report();
+    expect_good_run(run, mesh, uv_pm, what);
+    const auto [length_mismatch, angle_defect] = seam_mismatch(mesh, sm, uv_pm);
+    EXPECT_LT(length_mismatch, 1e-7) << what;
+    if(as_cut)
+    {
+      EXPECT_LT(length_mismatch, 1e-9) << what;
+      EXPECT_LT(angle_defect, 1e-8) << what;
+    }
+    else
+    {
+      EXPECT_GT(angle_defect, 1e-2) << what;
+    }
+  }
 }
 
 // =============================================================================================

@@ -260,6 +260,10 @@ private:
   int mesh_flips_ = 0;
 };
 
+/// The metric of ICM's parameterizers when none is named: the one whose maps came out most
+/// conformal with no flipped face on the shared meshes (doc/benchmarks.md).
+using Default_metric = Intrinsic_delaunay_metric;
+
 } // namespace ICM
 
 #endif // ICM_INTRINSIC_DELAUNAY_METRIC_H

@@ -17,6 +17,7 @@
 #include <ICM/Layout.h>
 #include <ICM/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Default.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
@@ -29,11 +30,13 @@
 #include <type_traits>
 #include <vector>
 
-namespace ICM {
+namespace CGAL {
+// Declared only: Seam_mesh.h itself must come after the BGL header of the mesh under it.
+template <class TM, class SEM, class SVM>
+class Seam_mesh;
+} // namespace CGAL
 
-/// The metric of `Inverse_curvature_map_parameterizer_3` when none is named: the one whose
-/// maps came out most conformal with no flipped face on the shared meshes (doc/benchmarks.md).
-using Default_metric = Intrinsic_delaunay_metric;
+namespace ICM {
 
 /// How the optimal metric is computed.
 enum class Optimum_method
@@ -64,6 +67,30 @@ inline const char* error_message(CGAL::Surface_mesh_parameterization::Error_code
   return "Unknown error";
 }
 
+/// How `Inverse_curvature_map_parameterizer_3` reads the seams of a `CGAL::Seam_mesh`.
+enum class Seam_reading
+{
+  /// The seams are border like any other (CGAL's reading): the disk's free-boundary
+  /// optimum, whose two sides of a seam need not match.
+  Border,
+  /// The seams are cuts of one surface (the mesh under the Seam_mesh): the metric is flat
+  /// across them, both sides of a seam get one length, and the seams' ends and branch
+  /// points are the cones, their angles left to the optimum (`ICM::parameterize` with the
+  /// seams as the user's cut).
+  Cut
+};
+
+namespace internal {
+
+template <class TriangleMesh>
+struct Is_seam_mesh : std::false_type
+{};
+template <class TM, class SeamEdgeMap, class SeamVertexMap>
+struct Is_seam_mesh<CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>> : std::true_type
+{};
+
+} // namespace internal
+
 /// Options of `Inverse_curvature_map_parameterizer_3`.
 struct Parameterization_options
 {
@@ -83,6 +110,8 @@ struct Parameterization_options
   bool fall_back_to_circle_packing = true;
   /// Called at the start of each stage with its name ("index", "metric", "optimum", "layout").
   std::function<void(const std::string&)> progress;
+  /// On a `CGAL::Seam_mesh`: its seams as free border (default) or as cuts of one surface.
+  Seam_reading seams = Seam_reading::Border;
 };
 
 /// What the last `parameterize()` did: sizes, topology, convergence, timings, the reason of
@@ -180,6 +209,9 @@ public:
       return run.fail(indexed.code, indexed.message);
     if(!index.is_disk())
       return run.fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
+    if constexpr(internal::Is_seam_mesh<TriangleMesh>::value)
+      if(options_.seams == Seam_reading::Cut)
+        return parameterize_cut_surface(mesh, uvmap, vpmap, run);
 
     // Steps 1-7 in the class of `Metric`, then in the circle packing's if it cannot get there.
     std::vector<Uv> uv;
@@ -204,6 +236,57 @@ public:
   }
 
 private:
+  struct Run;
+
+  /// `Seam_reading::Cut`: the surface under the seam mesh, cut along its seams and nothing
+  /// else, by `ICM::parameterize`; each seam-mesh vertex takes the UV of its corners. Every
+  /// component of the underlying mesh is parameterized (a Seam_mesh offers no way to
+  /// restrict it to one), each at its own place in the plane.
+  template <class VertexUVMap, class VertexParameterizedMap>
+  Error_code parameterize_cut_surface(TriangleMesh& mesh, VertexUVMap uvmap, VertexParameterizedMap vpmap, Run& run)
+  {
+    using Surface = std::decay_t<decltype(mesh.mesh())>;
+    using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
+    const Surface& surface = mesh.mesh();
+    std::vector<typename boost::graph_traits<Surface>::edge_descriptor> seams;
+    for(auto e : edges(surface))
+      if(mesh.has_on_seam(e))
+        seams.push_back(e);
+    Surface_parameterization_options options;
+    options.automatic_cones = false; // a cone off the seams would need a cut the mesh has not
+    options.remove_overlaps = false; // a cut of its own would split seam-mesh vertices
+    options.newton = options_.newton;
+    options.fall_back_to_circle_packing = options_.fall_back_to_circle_packing;
+    auto corner_uv = get(CGAL::dynamic_halfedge_property_t<Uv_point>(), surface);
+    stage("optimum");
+    const Surface_parameterization_report surface_report =
+      ICM::parameterize<Metric, Solver>(surface, corner_uv, options, {}, nullptr, seams);
+    Parameterization_report& report = run.report;
+    report.seconds_optimum = surface_report.seconds_cones + surface_report.seconds_optimum;
+    report.seconds_layout = surface_report.seconds_cut + surface_report.seconds_layout;
+    for(const Chart_report& chart : surface_report.charts)
+    {
+      report.metric = chart.metric;
+      if(report.fallback_reason.empty())
+        report.fallback_reason = chart.fallback_reason;
+      report.newton_iterations = std::max(report.newton_iterations, chart.newton_iterations);
+      report.max_curvature_error = std::max(report.max_curvature_error, chart.max_curvature_error);
+      report.max_layout_length_error = std::max(report.max_layout_length_error, chart.max_layout_length_error);
+      report.flipped_faces += chart.flipped_faces;
+      report.moved_vertices += chart.moved_vertices;
+    }
+    report.layout = "propagation";
+    if(surface_report.status != CGAL::Surface_mesh_parameterization::OK)
+      return run.fail(surface_report.status, surface_report.message);
+    for(auto f : faces(mesh))
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+      {
+        put(uvmap, target(h, mesh), get(corner_uv, h.tmhd));
+        put(vpmap, target(h, mesh), true);
+      }
+    return run.succeed();
+  }
+
   /// The clock and the report of one `parameterize()` call.
   struct Run
   {

@@ -20,7 +20,7 @@
 #include <ICM/Curvature_map.h>
 #include <ICM/Cut_graph.h>
 #include <ICM/Inverse_curvature_map.h>
-#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Layout.h>
 #include <ICM/Overlap_removal.h>
 #include <ICM/Singular_vertices.h>
