@@ -28,6 +28,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <queue>
@@ -994,6 +995,22 @@ TEST_P(NearlyClosed, Parameterizes)
   // The whole closed surface is squeezed inside its tiny hole's border: this area ratio span
   // is what makes linear methods such as LSCM collapse on these inputs.
   EXPECT_GT(span, c.min_area_ratio_span) << c.name;
+
+  // The one call for any mesh sees the extreme free-boundary optimum and adds interior cones
+  // (cut to the border): at least 10 times less log area distortion, still no flip.
+  auto corner_uv = mesh.add_property_map<SM_halfedge, Point_2>("h:test_corner_uv").first;
+  const ICM::Surface_parameterization_report with_cones = ICM::parameterize(mesh, corner_uv);
+  ASSERT_EQ(with_cones.status, SMP::OK) << c.name << ": " << with_cones.message;
+  ASSERT_EQ(with_cones.charts.size(), 1u);
+  EXPECT_GT(with_cones.charts[0].cones.size(), 0u) << c.name;
+  EXPECT_EQ(with_cones.charts[0].overlapping_border_edges, 0) << c.name;
+  const ICM::Distortion_measures coned = ICM::measure_distortion_corner_uv(mesh, corner_uv);
+  EXPECT_EQ(coned.flipped_faces, 0u) << c.name;
+  RecordProperty("log_area_free_boundary", std::to_string(m.log_area_distortion));
+  RecordProperty("log_area_with_cones", std::to_string(coned.log_area_distortion));
+  EXPECT_LT(10 * coned.log_area_distortion, m.log_area_distortion) << c.name;
+  std::cout << c.name << ": log area " << m.log_area_distortion << " free boundary, "
+            << coned.log_area_distortion << " with " << with_cones.charts[0].cones.size() << " cones\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, NearlyClosed,

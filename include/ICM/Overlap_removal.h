@@ -29,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -165,9 +166,36 @@ inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(
   std::vector<int> first, second;
   if(strongest.first == strongest.second)
   {
-    for(const auto& [f, g] : pairs)
-      if(layers.find(f) == strongest.first)
-        return {{f}, {g}};
+    // One layer folded over itself (a flap joined to what it covers through the fold):
+    // split the layer between a pair's two faces, each face of the layer going to the
+    // nearer of them in face hops. Separating the two faces alone, the cheapest cut is
+    // around one of them, and a fold needs as many cuts as it has faces.
+    const int layer = strongest.first;
+    int f = -1, g = -1;
+    for(const auto& pair : pairs)
+      if(layers.find(pair.first) == layer)
+      {
+        std::tie(f, g) = pair;
+        break;
+      }
+    std::vector<int> side(disk.number_of_faces(), -1);
+    std::vector<int> queue{f, g};
+    side[f] = 0;
+    side[g] = 1;
+    for(std::size_t next = 0; next < queue.size(); ++next)
+    {
+      const int a = queue[next];
+      for(int e : disk.face_edges[a])
+        for(int b : disk.edge_faces[e])
+          if(b >= 0 && side[b] < 0 && overlapping[b] && layers.find(b) == layer)
+          {
+            side[b] = side[a];
+            queue.push_back(b);
+          }
+    }
+    for(int h : queue)
+      (side[h] == 0 ? first : second).push_back(h);
+    return {first, second};
   }
   for(int f = 0; f < disk.number_of_faces(); ++f)
     if(overlapping[f])
