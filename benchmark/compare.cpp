@@ -3,7 +3,14 @@
 // wall time, peak memory, flipped faces and quasi-conformal ratios, as Markdown or JSON lines.
 //
 //   compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c] [--subdivide K]
-//           [--svg-panels FILE] [--quiet] MESH...
+//           [--open] [--svg-panels FILE] [--quiet] MESH...
+//
+// A topological disk goes through CGAL's parameterize() with every method of the registry.
+// Any other connected mesh (closed, genus > 0, several boundary loops) is parameterized by
+// ICM's one call, ICM::parameterize() (row `icm`: cones, cut, optimum, layout); CGAL's
+// methods then run on a CGAL::Seam_mesh cut along ICM's seams (the same cut), and a closed
+// genus-0 mesh also gets `icm_free_boundary_opened`, the free-boundary parameterizer on the
+// mesh opened at its first vertex.
 //
 // Every run of every method happens in a forked child process on its own copy of the mesh:
 // a method that hangs is killed at the time limit and shown as `timeout`, a method that
@@ -15,12 +22,14 @@
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/Seam_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -76,7 +85,17 @@ using Mesh = CGAL::Surface_mesh<Point_3>;
 using vertex_descriptor = boost::graph_traits<Mesh>::vertex_descriptor;
 using halfedge_descriptor = boost::graph_traits<Mesh>::halfedge_descriptor;
 using face_descriptor = boost::graph_traits<Mesh>::face_descriptor;
+using edge_descriptor = boost::graph_traits<Mesh>::edge_descriptor;
 using UV_map = Mesh::Property_map<vertex_descriptor, Point_2>;
+
+// A mesh that is not a disk, cut along seams without copying it. Its UVs live in a halfedge
+// map of the underlying mesh: one UV per corner (the seam mesh reads a seam-mesh vertex's UV
+// at its halfedge), which is also the layout ICM::parameterize() writes.
+using Seam_edge_map = Mesh::Property_map<edge_descriptor, bool>;
+using Seam_vertex_map = Mesh::Property_map<vertex_descriptor, bool>;
+using Seam_mesh = CGAL::Seam_mesh<Mesh, Seam_edge_map, Seam_vertex_map>;
+using seam_halfedge_descriptor = boost::graph_traits<Seam_mesh>::halfedge_descriptor;
+using Corner_UV_map = Mesh::Property_map<halfedge_descriptor, Point_2>;
 
 const double NaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -92,6 +111,8 @@ struct Run_result {
   std::string message;                   // extra failure reason (ICM's report)
   std::optional<int> newton_iterations;  // ICM only
   std::string metric;                    // ICM only: the metric of the result (after a fallback)
+  std::string fallback_reason;           // ICM only: why the requested metric was not used
+  std::vector<std::pair<std::string, double>> stage_seconds;  // ICM only: the report's times
 };
 
 struct Method {
@@ -100,9 +121,10 @@ struct Method {
 };
 
 // Times CGAL's free function parameterize(); `p` is passed on by value, as CGAL does.
-template <class Parameterizer>
-Run_result timed_parameterize(Mesh& mesh, const Parameterizer& p, halfedge_descriptor bhd,
-                              UV_map uvmap) {
+template <class TriangleMesh, class Parameterizer, class UVMap>
+Run_result timed_parameterize(TriangleMesh& mesh, const Parameterizer& p,
+                              typename boost::graph_traits<TriangleMesh>::halfedge_descriptor bhd,
+                              UVMap uvmap) {
   Run_result r;
   const auto t0 = std::chrono::steady_clock::now();
   r.code = SMP::parameterize(mesh, p, bhd, uvmap);
@@ -130,6 +152,12 @@ Method icm_method(std::string name) {
             r.newton_iterations = report.newton_iterations;
             r.message = report.message;
             r.metric = report.metric;
+            r.fallback_reason = report.fallback_reason;
+            r.stage_seconds = {{"seconds_index", report.seconds_index},
+                               {"seconds_metric", report.seconds_metric},
+                               {"seconds_optimum", report.seconds_optimum},
+                               {"seconds_layout", report.seconds_layout},
+                               {"seconds_total", report.seconds_total}};
             return r;
           }};
 }
@@ -152,6 +180,38 @@ std::vector<Method> make_registry() {
   };
 }
 
+// CGAL's methods on a seam mesh (a surface that is not a disk, cut along ICM's seams); the
+// names are those of the registry's CGAL rows.
+struct Seam_method {
+  std::string name;
+  std::function<Run_result(Seam_mesh&, seam_halfedge_descriptor, Corner_UV_map)> run;
+};
+
+template <class Parameterizer>
+Seam_method seam_cgal_method(std::string name) {
+  return {std::move(name), [](Seam_mesh& mesh, seam_halfedge_descriptor bhd, Corner_UV_map uvmap) {
+            return timed_parameterize(mesh, Parameterizer(), bhd, uvmap);
+          }};
+}
+
+std::vector<Seam_method> make_seam_registry() {
+  return {
+      seam_cgal_method<SMP::LSCM_parameterizer_3<Seam_mesh>>("lscm"),
+      seam_cgal_method<SMP::ARAP_parameterizer_3<Seam_mesh>>("arap"),
+      seam_cgal_method<SMP::Discrete_conformal_map_parameterizer_3<Seam_mesh>>("dcm"),
+      seam_cgal_method<SMP::Discrete_authalic_parameterizer_3<Seam_mesh>>("dac"),
+      seam_cgal_method<SMP::Mean_value_coordinates_parameterizer_3<Seam_mesh>>("mvc"),
+  };
+}
+
+// Rows of a surface that is not a disk, besides the seam-mesh CGAL methods:
+//   icm                       ICM::parameterize(), the whole pipeline (cones, cut, optimum, layout)
+//   icm_keep_overlaps         the same with remove_overlaps = false: the raw cut (shown, and
+//                             given to CGAL's methods, when overlap removal made pieces)
+//   icm_free_boundary_opened  icm_free_boundary on the closed mesh opened at its first vertex
+const std::vector<std::string> surface_methods = {"icm", "icm_keep_overlaps",
+                                                  "icm_free_boundary_opened"};
+
 // The methods drawn by --svg-panels, in this order.
 const std::vector<std::string> panel_methods = {"icm_free_boundary", "lscm", "arap"};
 
@@ -168,25 +228,31 @@ struct Options {
   bool open = false;
   std::vector<std::string> methods;  // empty: all
   std::string svg_panels;
+  std::string json_file;  // --json-file: the JSON lines also go to this file
   std::vector<std::string> meshes;
 };
 
 const char* usage_text =
     "usage: compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c]\n"
-    "               [--subdivide K] [--open] [--svg-panels FILE] [--quiet] MESH...\n"
+    "               [--subdivide K] [--open] [--svg-panels FILE] [--json-file FILE]\n"
+    "               [--quiet] MESH...\n"
     "\n"
-    "Runs each parameterization method on each mesh (OFF/OBJ/PLY, a topological disk) and\n"
-    "prints the paper's Table I plus time, memory and flips as Markdown (or JSON lines).\n"
+    "Runs each parameterization method on each mesh (OFF/OBJ/PLY) and prints the paper's\n"
+    "Table I plus time, memory and flips as Markdown (or JSON lines). A mesh that is not a\n"
+    "disk gets ICM::parameterize() (row icm) and CGAL's methods on a seam mesh cut along\n"
+    "ICM's seams; a closed genus-0 mesh also icm_free_boundary_opened.\n"
     "\n"
     "  --json             one JSON object per (mesh, method) on stdout instead of Markdown\n"
     "  --runs N           timed runs per method, median reported (default: 3 if one run\n"
     "                     takes < 2 s, else 1)\n"
     "  --time-limit S     per-run limit in seconds; slower runs are killed and shown as\n"
     "                     'timeout' (default 600)\n"
-    "  --methods a,b      run only these methods (default: all)\n"
+    "  --methods a,b      run only these methods (default: all); besides the registry's:\n"
+    "                     icm, icm_keep_overlaps, icm_free_boundary_opened\n"
     "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
     "  --open             open each closed mesh by removing the faces around its first\n"
     "                     vertex: a nearly closed disk, like a scan with one small hole\n"
+    "  --json-file FILE   also write the JSON lines to FILE (with the Markdown on stdout)\n"
     "  --svg-panels FILE  write the UV layouts of icm_free_boundary, lscm and arap for the\n"
     "                     first mesh side by side to FILE (faces coloured by log area ratio)\n"
     "  --quiet            no progress lines on stderr\n";
@@ -260,6 +326,8 @@ Options parse_options(int argc, char** argv, const std::vector<Method>& registry
       if (o.methods.empty()) usage_error("--methods needs at least one name");
     } else if (a == "--svg-panels") {
       o.svg_panels = value(i, a);
+    } else if (a == "--json-file") {
+      o.json_file = value(i, a);
     } else if (a.size() > 1 && a[0] == '-' && a != "-") {
       usage_error("unknown option " + a);
     } else {
@@ -268,10 +336,13 @@ Options parse_options(int argc, char** argv, const std::vector<Method>& registry
   }
   for (const std::string& m : o.methods) {
     const bool known = std::any_of(registry.begin(), registry.end(),
-                                   [&](const Method& r) { return r.name == m; });
+                                   [&](const Method& r) { return r.name == m; }) ||
+                       std::find(surface_methods.begin(), surface_methods.end(), m) !=
+                           surface_methods.end();
     if (!known) {
       std::string valid;
       for (const Method& r : registry) valid += (valid.empty() ? "" : ", ") + r.name;
+      for (const std::string& name : surface_methods) valid += ", " + name;
       std::cerr << "compare: unknown method '" << m << "'; valid methods: " << valid << "\n";
       std::exit(2);
     }
@@ -320,6 +391,11 @@ struct Row {
   Measures m;
   std::optional<int> newton_iterations;
   std::string metric;
+  // Surfaces that are not disks only (empty for a disk, whose output is unchanged):
+  std::string topology;  // "genus G, B loops", shown in the Markdown model label
+  std::string detail;    // shown in parentheses after the method in Markdown (e.g. the cut)
+  std::string note;      // appended to the Markdown status (e.g. ICM's stage times)
+  std::vector<std::pair<std::string, std::string>> json_extra;  // key, JSON value
 };
 
 // What one child process sends back through its pipe: "key value" lines.
@@ -334,7 +410,16 @@ struct Child_result {
   std::string metric;
   std::string message;
   std::string exception;
+  std::vector<std::pair<std::string, double>> extra;  // named numbers (ICM's report), in order
+  std::string fallback_reason;                        // ICM's, when it fell back
+  std::vector<std::size_t> seams;                     // ICM's seam edges (edge indices)
 };
+
+double extra_value(const Child_result& r, const std::string& key) {
+  for (const auto& [k, v] : r.extra)
+    if (k == key) return v;
+  return NaN;
+}
 
 std::string fmt_g(double x) {
   if (std::isnan(x)) return "nan";
@@ -376,6 +461,13 @@ std::string serialize(const Child_result& r) {
   }
   if (!r.message.empty()) out << "message " << one_line(r.message) << "\n";
   if (!r.exception.empty()) out << "exception " << one_line(r.exception) << "\n";
+  for (const auto& [key, value] : r.extra) out << "x." << key << " " << fmt_g(value) << "\n";
+  if (!r.fallback_reason.empty()) out << "fallback " << one_line(r.fallback_reason) << "\n";
+  if (!r.seams.empty()) {
+    out << "seams";
+    for (std::size_t e : r.seams) out << " " << e;
+    out << "\n";
+  }
   out << "end 1\n";
   return out.str();
 }
@@ -384,12 +476,21 @@ Child_result deserialize(const std::string& text) {
   std::map<std::string, std::string> kv;
   std::istringstream in(text);
   std::string line;
+  Child_result r;
   while (std::getline(in, line)) {
     const auto sp = line.find(' ');
     if (sp == std::string::npos) continue;
-    kv[line.substr(0, sp)] = line.substr(sp + 1);
+    const std::string key = line.substr(0, sp), value = line.substr(sp + 1);
+    kv[key] = value;
+    if (key.rfind("x.", 0) == 0)
+      r.extra.emplace_back(key.substr(2), std::strtod(value.c_str(), nullptr));
   }
-  Child_result r;
+  if (kv.count("fallback")) r.fallback_reason = kv["fallback"];
+  if (kv.count("seams")) {
+    std::istringstream seams(kv["seams"]);
+    std::size_t e;
+    while (seams >> e) r.seams.push_back(e);
+  }
   r.complete = kv.count("end") > 0;
   auto num = [&](const char* key) {
     auto it = kv.find(key);
@@ -464,10 +565,13 @@ void write_all(int fd, const std::string& s) {
   }
 }
 
-// The child's work: copy the mesh, run, measure, report. Never returns.
-[[noreturn]] void child_main(int fd, const Mesh& input, const Method& method, bool measure) {
-  Child_result r;
-  try {
+// What a child does: fill `r` (copy the mesh, run, measure). `measure` is false for the
+// extra timing runs.
+using Job = std::function<void(Child_result& r, bool measure)>;
+
+// A registry method on a disk: its own copy of the mesh, the longest border, a vertex UV map.
+Job method_job(const Mesh& input, const Method& method) {
+  return [&input, &method](Child_result& r, bool measure) {
     Mesh mesh = input;  // the method's own copy
     UV_map uvmap = mesh.add_property_map<vertex_descriptor, Point_2>("v:compare_uv",
                                                                     Point_2(0, 0)).first;
@@ -479,10 +583,20 @@ void write_all(int fd, const std::string& s) {
     r.newton_iterations = run.newton_iterations;
     r.metric = run.metric;
     r.message = run.message;
+    r.extra = run.stage_seconds;
+    r.fallback_reason = run.fallback_reason;
     if (measure && has_usable_uvs(run.code)) {
       r.m = to_measures(ICM::measure_distortion(mesh, uvmap));
       r.has_measures = true;
     }
+  };
+}
+
+// The child's work: run the job, report. Never returns.
+[[noreturn]] void child_main(int fd, const Job& job, bool measure) {
+  Child_result r;
+  try {
+    job(r, measure);
   } catch (const std::exception& e) {
     r.exception = e.what();
     if (r.exception.empty()) r.exception = "std::exception";
@@ -502,8 +616,7 @@ struct Child_outcome {
   Child_result result;
 };
 
-Child_outcome run_in_child(const Mesh& mesh, const Method& method, bool measure,
-                           double time_limit) {
+Child_outcome run_in_child(const Job& job, bool measure, double time_limit) {
   Child_outcome out;
   int fds[2];
   if (::pipe(fds) != 0) {
@@ -531,7 +644,7 @@ Child_outcome run_in_child(const Mesh& mesh, const Method& method, bool measure,
       ::dup2(devnull, STDOUT_FILENO);
       ::close(devnull);
     }
-    child_main(fds[1], mesh, method, measure);
+    child_main(fds[1], job, measure);
   }
   ::close(fds[1]);
 
@@ -629,11 +742,14 @@ double median(std::vector<double> v) {
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// All runs of one method on one mesh: the first run measures; more runs only time.
-Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row row) {
-  row.method = method.name;
-  const Child_outcome first = run_in_child(mesh, method, /*measure=*/true, opt.time_limit);
+// All runs of one job on one mesh: the first run measures; more runs only time. The first
+// run's result goes to `first_result` when given (ICM's seams and report).
+Row run_job(const Job& job, const std::string& name, const Options& opt, Row row,
+            Child_result* first_result = nullptr) {
+  row.method = name;
+  const Child_outcome first = run_in_child(job, /*measure=*/true, opt.time_limit);
   row.status = status_of(first);
+  if (first_result) *first_result = first.result;
   if (first.kind == Child_outcome::timeout) row.peak_rss_mb = first.peak_rss_mb;
   if (first.kind != Child_outcome::finished) return row;
   const Child_result& r = first.result;
@@ -643,21 +759,34 @@ Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row r
   row.metric = r.metric;
   row.peak_rss_mb = r.peak_rss_mb;
   std::vector<double> times{r.seconds};
+  // Named times of the report (ICM's stages): the median over the runs, like the time.
+  std::map<std::string, std::vector<double>> stage_times;
+  for (const auto& [key, value] : r.extra)
+    if (key.rfind("seconds", 0) == 0) stage_times[key].push_back(value);
   if (row.status == "ok") {
     const int runs = opt.runs > 0 ? opt.runs : (r.seconds < 2.0 ? 3 : 1);
     for (int k = 1; k < runs; ++k) {
-      const Child_outcome more = run_in_child(mesh, method, /*measure=*/false, opt.time_limit);
+      const Child_outcome more = run_in_child(job, /*measure=*/false, opt.time_limit);
       const std::string st = status_of(more);
       if (st != "ok") {  // a method that is not deterministic in its outcome: show it
         row.status = st + " (run " + std::to_string(k + 1) + ")";
         break;
       }
       times.push_back(more.result.seconds);
+      for (const auto& [key, value] : more.result.extra)
+        if (stage_times.count(key)) stage_times[key].push_back(value);
       row.peak_rss_mb = std::max(row.peak_rss_mb, more.result.peak_rss_mb);
     }
   }
   row.seconds = median(times);
+  if (first_result)
+    for (auto& [key, value] : first_result->extra)
+      if (stage_times.count(key)) value = median(stage_times[key]);
   return row;
+}
+
+Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row row) {
+  return run_job(method_job(mesh, method), method.name, opt, std::move(row));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -671,6 +800,15 @@ std::string mesh_name(const std::string& path) {
   const auto dot = name.find_last_of('.');
   if (dot != std::string::npos && dot > 0) name = name.substr(0, dot);
   return name;
+}
+
+// Opens a closed mesh by removing the faces around its first vertex (--open, and the mesh of
+// icm_free_boundary_opened): a nearly closed disk, like a scan with one small hole.
+void open_at_first_vertex(Mesh& mesh) {
+  std::vector<face_descriptor> around;
+  for (face_descriptor f : CGAL::faces_around_target(halfedge(*vertices(mesh).begin(), mesh), mesh))
+    around.push_back(f);
+  for (face_descriptor f : around) CGAL::Euler::remove_face(halfedge(f, mesh), mesh);
 }
 
 // Reads and prepares a mesh; on failure returns false with a reason.
@@ -695,35 +833,157 @@ bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::str
   if (opt.subdivide > 0)
     CGAL::Subdivision_method_3::Loop_subdivision(
         mesh, CGAL::parameters::number_of_iterations(static_cast<unsigned int>(opt.subdivide)));
-  if (opt.open && CGAL::is_closed(mesh)) {
-    std::vector<face_descriptor> around;
-    for (face_descriptor f : CGAL::faces_around_target(halfedge(*vertices(mesh).begin(), mesh), mesh))
-      around.push_back(f);
-    for (face_descriptor f : around) CGAL::Euler::remove_face(halfedge(f, mesh), mesh);
-  }
+  if (opt.open && CGAL::is_closed(mesh)) open_at_first_vertex(mesh);
   if (mesh.has_garbage()) mesh.collect_garbage();
   return true;
+}
+
+// Components, boundary loops and Euler characteristic chi = V - E + F = 2C - 2G - B.
+struct Topology {
+  std::size_t components = 0;
+  long loops = 0;
+  long chi = 0;
+  long two_g() const { return 2 * static_cast<long>(components) - loops - chi; }
+  bool closed() const { return loops == 0; }
+  bool disk() const { return components == 1 && loops == 1 && two_g() == 0; }
+  // The genus when the mesh is connected, else "?".
+  std::string genus() const {
+    return components == 1 && two_g() % 2 == 0 ? std::to_string(two_g() / 2) : "?";
+  }
+  std::string description() const {
+    std::string s = components == 1 ? std::string()
+                                    : std::to_string(components) + " components, ";
+    return s + "genus " + genus() + ", " + std::to_string(loops) + " loops";
+  }
+};
+
+Topology topology_of(Mesh& mesh) {
+  Topology t;
+  auto fccmap = mesh.add_property_map<face_descriptor, std::size_t>("f:compare_cc").first;
+  t.components = PMP::connected_components(mesh, fccmap);
+  mesh.remove_property_map(fccmap);
+  std::vector<halfedge_descriptor> cycles;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
+  t.loops = static_cast<long>(cycles.size());
+  t.chi = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
+          static_cast<long>(num_faces(mesh));
+  return t;
 }
 
 // "" when the mesh is a topological disk (one component, one boundary loop, genus 0),
 // else the reason for skipping it.
 std::string disk_check(Mesh& mesh) {
-  auto fccmap = mesh.add_property_map<face_descriptor, std::size_t>("f:compare_cc").first;
-  const std::size_t components = PMP::connected_components(mesh, fccmap);
-  mesh.remove_property_map(fccmap);
-  std::vector<halfedge_descriptor> cycles;
-  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
-  const long b = static_cast<long>(cycles.size());
-  const long chi = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
-                   static_cast<long>(num_faces(mesh));
-  if (components != 1)
-    return "skipped: not a disk (" + std::to_string(components) + " components, " +
+  const Topology t = topology_of(mesh);
+  const long b = t.loops;
+  if (t.components != 1)
+    return "skipped: not a disk (" + std::to_string(t.components) + " components, " +
            std::to_string(b) + " loops)";
-  const long two_g = 2 - b - chi;
+  const long two_g = 2 - b - t.chi;
   const std::string genus = two_g % 2 == 0 ? std::to_string(two_g / 2) : "?";
   if (b != 1 || two_g != 0)
     return "skipped: not a disk (" + std::to_string(b) + " loops, genus " + genus + ")";
   return "";
+}
+
+// ------------------------------------------------------------------------------------------
+// Surfaces that are not disks: ICM's one call, and CGAL's methods on ICM's cut
+// ------------------------------------------------------------------------------------------
+
+// ICM::parameterize() on its own copy of the mesh, timed as a whole, measured per corner. The
+// report's stage times and counts go back as extras, the seam edges as edge indices.
+Job icm_job(const Mesh& input, bool remove_overlaps) {
+  return [&input, remove_overlaps](Child_result& r, bool measure) {
+    Mesh mesh = input;
+    Corner_UV_map uvmap =
+        mesh.add_property_map<halfedge_descriptor, Point_2>("h:compare_uv", Point_2(0, 0)).first;
+    ICM::Surface_parameterization_options options;
+    options.remove_overlaps = remove_overlaps;
+    std::vector<edge_descriptor> seams;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ICM::Surface_parameterization_report report =
+        ICM::parameterize(mesh, uvmap, options, {}, &seams);
+    const auto t1 = std::chrono::steady_clock::now();
+    r.peak_rss_mb = peak_rss_mb();
+    r.code = static_cast<int>(report.status);
+    r.seconds = std::chrono::duration<double>(t1 - t0).count();
+    r.message = report.message;
+    int newton = 0, cones = 0, pieces = 0, raw_crossings = 0, crossings = 0, overlap_cuts = 0;
+    std::string metric, fallback;
+    for (const ICM::Chart_report& c : report.charts) {
+      newton += c.newton_iterations;
+      cones += static_cast<int>(c.cones.size());
+      pieces += c.pieces;
+      raw_crossings += c.raw_overlapping_border_edges;
+      crossings += c.overlapping_border_edges;
+      overlap_cuts += c.overlap_cut_edges;
+      if (metric.find(c.metric) == std::string::npos)
+        metric += (metric.empty() ? "" : "/") + c.metric;
+      if (!c.fallback_reason.empty() && fallback.empty()) fallback = c.fallback_reason;
+    }
+    r.newton_iterations = newton;
+    r.metric = metric + (fallback.empty() ? "" : ", fallback");
+    r.extra = {{"cones", cones},
+               {"seam_edges", static_cast<double>(seams.size())},
+               {"charts", pieces},
+               {"overlap_cut_edges", overlap_cuts},
+               {"raw_border_crossings", raw_crossings},
+               {"border_crossings", crossings},
+               {"seconds_cones", report.seconds_cones},
+               {"seconds_optimum", report.seconds_optimum},
+               {"seconds_cut", report.seconds_cut},
+               {"seconds_layout", report.seconds_layout},
+               {"seconds_total", report.seconds_total}};
+    // Only a successful call writes UVs (a failing component returns before the layout is
+    // written), so nothing is measured otherwise.
+    if (report.status == SMP::OK) {
+      for (edge_descriptor e : seams) r.seams.push_back(static_cast<std::size_t>(e));
+      if (measure) {
+        r.m = to_measures(ICM::measure_distortion_corner_uv(mesh, uvmap));
+        r.has_measures = true;
+      }
+    }
+  };
+}
+
+// A CGAL method on the mesh cut along `seams` (edge indices of the mesh): a CGAL::Seam_mesh,
+// its longest border (the cut, plus the holes it joins) as the border halfedge, one UV per
+// seam-mesh vertex stored at its halfedge. The cut must make one disk; else the row says so.
+Job seam_job(const Mesh& input, const std::vector<std::size_t>& seams, const Seam_method& method) {
+  return [&input, &seams, &method](Child_result& r, bool measure) {
+    Mesh mesh = input;
+    Seam_edge_map seam_edge =
+        mesh.add_property_map<edge_descriptor, bool>("e:compare_seam", false).first;
+    Seam_vertex_map seam_vertex =
+        mesh.add_property_map<vertex_descriptor, bool>("v:compare_seam", false).first;
+    Corner_UV_map uvmap =
+        mesh.add_property_map<halfedge_descriptor, Point_2>("h:compare_uv", Point_2(0, 0)).first;
+    Seam_mesh seam_mesh(mesh, seam_edge, seam_vertex);
+    for (std::size_t i : seams) {
+      const edge_descriptor e(static_cast<Mesh::size_type>(i));
+      seam_mesh.add_seam(source(e, mesh), target(e, mesh));
+    }
+    std::vector<seam_halfedge_descriptor> cycles;
+    PMP::extract_boundary_cycles(seam_mesh, std::back_inserter(cycles));
+    const long chi = static_cast<long>(num_vertices(seam_mesh)) -
+                     static_cast<long>(num_edges(seam_mesh)) +
+                     static_cast<long>(num_faces(seam_mesh));
+    if (cycles.size() != 1 || chi != 1) {
+      r.code = static_cast<int>(SMP::ERROR_NO_TOPOLOGICAL_DISC);
+      r.message = "the cut leaves " + std::to_string(cycles.size()) + " border loops, chi " +
+                  std::to_string(chi);
+      return;
+    }
+    const seam_halfedge_descriptor bhd = PMP::longest_border(seam_mesh).first;
+    const Run_result run = method.run(seam_mesh, bhd, uvmap);
+    r.peak_rss_mb = peak_rss_mb();
+    r.code = static_cast<int>(run.code);
+    r.seconds = run.seconds;
+    r.message = run.message;
+    if (measure && has_usable_uvs(run.code)) {
+      r.m = to_measures(ICM::measure_distortion(seam_mesh, uvmap));
+      r.has_measures = true;
+    }
+  };
 }
 
 // ------------------------------------------------------------------------------------------
@@ -766,7 +1026,7 @@ std::string json_count(double x) {
   return buf;
 }
 
-void print_json(const Row& r) {
+void print_json(const Row& r, std::ostream& out = std::cout) {
   const Measures& m = r.m;
   const bool h = r.has_measures;
   std::ostringstream o;
@@ -788,9 +1048,10 @@ void print_json(const Row& r) {
     << ", \"area_ratio_max\": " << (h ? json_num(m.area_ratio_max) : "null")
     << ", \"newton_iterations\": "
     << (r.newton_iterations ? std::to_string(*r.newton_iterations) : std::string("null"))
-    << ", \"metric\": " << (r.metric.empty() ? std::string("null") : "\"" + r.metric + "\"")
-    << "}\n";
-  std::cout << o.str() << std::flush;
+    << ", \"metric\": " << (r.metric.empty() ? std::string("null") : "\"" + r.metric + "\"");
+  for (const auto& [key, value] : r.json_extra) o << ", \"" << json_escape(key) << "\": " << value;
+  o << "}\n";
+  out << o.str() << std::flush;
 }
 
 // Fixed decimals as in the paper's table, switching to scientific notation when that would
@@ -826,7 +1087,8 @@ std::string md_cell(std::string s) {
 }
 
 std::string model_label(const Row& r) {
-  return r.mesh + " #v: " + std::to_string(r.vertices) + " #f: " + std::to_string(r.faces);
+  return r.mesh + " #v: " + std::to_string(r.vertices) + " #f: " + std::to_string(r.faces) +
+         (r.topology.empty() ? std::string() : " (" + r.topology + ")");
 }
 
 void print_markdown_header() {
@@ -842,7 +1104,9 @@ void print_markdown_row(const Row& r, bool first) {
   auto cell = [&](double x, int decimals) { return h ? fmt_fixed(x, decimals) : std::string(); };
   std::ostringstream o;
   // An ICM row names the metric of its result: after a fallback it is not the requested one.
-  const std::string method = r.metric.empty() ? r.method : r.method + " (" + r.metric + ")";
+  std::string details = r.metric;
+  if (!r.detail.empty()) details += (details.empty() ? "" : ", ") + r.detail;
+  const std::string method = details.empty() ? r.method : r.method + " (" + details + ")";
   o << "| " << (first ? md_cell(model_label(r)) : "") << " | " << md_cell(method)
     << " | " << cell(m.conformality, 5) << " | " << cell(m.angle_distortion, 5) << " | "
     << cell(m.l2_shear, 4) << " | " << cell(m.l2_stretch, 4) << " | "
@@ -852,8 +1116,18 @@ void print_markdown_row(const Row& r, bool first) {
     << cell(m.qc_max, 3) << " | "
     << (std::isfinite(r.peak_rss_mb) ? fmt_fixed(r.peak_rss_mb, 1) : "") << " | "
     << (r.newton_iterations ? std::to_string(*r.newton_iterations) : "") << " | "
-    << md_cell(r.status) << " |\n";
+    << md_cell(r.note.empty() ? r.status : r.status + "; " + r.note) << " |\n";
   std::cout << o.str() << std::flush;
+}
+
+// --json-file's stream, opened in main().
+std::ofstream json_file;
+
+// One row on stdout (JSON or Markdown) and, with --json-file, as JSON in that file.
+void emit(const Row& row, bool first, const Options& opt) {
+  if (opt.json) print_json(row);
+  else print_markdown_row(row, first);
+  if (json_file.is_open()) print_json(row, json_file);
 }
 
 std::string machine_description() {
@@ -931,6 +1205,196 @@ bool write_panels(const std::string& mesh_path, const Options& opt,
   return true;
 }
 
+// ------------------------------------------------------------------------------------------
+// A mesh that is not a disk: the rows in order
+// ------------------------------------------------------------------------------------------
+
+// ICM's report in a row: the named numbers as JSON keys, the counts and stage times in the
+// Markdown status.
+void add_icm_report(Row& row, const Child_result& result) {
+  for (const auto& [key, value] : result.extra)
+    row.json_extra.emplace_back(key, key.rfind("seconds", 0) == 0 ? json_num(value)
+                                                                   : json_count(value));
+  if (result.extra.empty() || row.status.rfind("ok", 0) != 0) return;
+  auto x = [&](const char* key) { return extra_value(result, key); };
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%.0f cones, %.0f seam edges, %.0f chart%s; cones %s s, optimum %s s, cut %s s, "
+                "layout %s s",
+                x("cones"), x("seam_edges"), x("charts"), x("charts") == 1 ? "" : "s",
+                fmt_seconds(x("seconds_cones")).c_str(), fmt_seconds(x("seconds_optimum")).c_str(),
+                fmt_seconds(x("seconds_cut")).c_str(), fmt_seconds(x("seconds_layout")).c_str());
+  row.note = buf;
+  if (x("border_crossings") > 0)
+    row.note += "; " + json_count(x("border_crossings")) + " border crossings";
+}
+
+// Default rows of a mesh that is not a disk: ICM's one call, CGAL's methods on its cut and,
+// for a closed genus-0 mesh, the free-boundary parameterizer on the mesh opened at one vertex.
+std::vector<std::string> surface_names(const Topology& t) {
+  std::vector<std::string> names = {"icm", "lscm", "arap", "dcm", "dac", "mvc"};
+  if (t.components == 1 && t.closed() && t.two_g() == 0) names.push_back("icm_free_boundary_opened");
+  return names;
+}
+
+void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Options& opt,
+                 const std::vector<std::string>& asked, const std::vector<Method>& registry,
+                 const std::vector<Seam_method>& seam_registry) {
+  std::vector<std::string> names = asked.empty() ? surface_names(topology) : asked;
+  base.topology = topology.description();
+  base.json_extra = {{"components", std::to_string(topology.components)},
+                     {"genus", topology.components == 1 ? topology.genus() : "null"},
+                     {"loops", std::to_string(topology.loops)}};
+  const bool connected = topology.components == 1;
+  auto seam_method = [&](const std::string& name) -> const Seam_method* {
+    for (const Seam_method& m : seam_registry)
+      if (m.name == name) return &m;
+    return nullptr;
+  };
+  auto asks = [&](const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  const bool wants_cgal = std::any_of(names.begin(), names.end(),
+                                      [&](const std::string& n) { return seam_method(n) != nullptr; });
+  auto progress = [&](const std::string& name) {
+    if (!opt.quiet)
+      std::cerr << "compare: " << base.mesh << " (" << base.faces << " faces, "
+                << base.topology << "): " << name << " ..." << std::flush;
+  };
+  auto progress_done = [&](const Row& row) {
+    if (!opt.quiet)
+      std::cerr << " " << row.status
+                << (std::isfinite(row.seconds) ? ", " + fmt_seconds(row.seconds) + " s" : "")
+                << "\n";
+  };
+
+  // ICM first: its row, and its seams for CGAL's methods. When overlap removal cut the chart
+  // into pieces, the seams do not make one disk: CGAL's methods get the raw cut, ICM's with
+  // remove_overlaps = false (shown as icm_keep_overlaps when icm is shown).
+  std::map<std::string, Row> done;
+  std::vector<std::size_t> cut;
+  std::string cut_name, no_cut;
+  auto icm_run = [&](bool remove_overlaps, bool shown, Child_result& result) {
+    const std::string name = remove_overlaps ? "icm" : "icm_keep_overlaps";
+    if (shown) {
+      progress(name);
+      Row row = run_job(icm_job(mesh, remove_overlaps), name, opt, base, &result);
+      add_icm_report(row, result);
+      progress_done(row);
+      done[name] = row;
+      return row.status;
+    }
+    if (!opt.quiet) std::cerr << "compare: " << base.mesh << ": " << name << " for the cut ...";
+    const Child_outcome o = run_in_child(icm_job(mesh, remove_overlaps), false, opt.time_limit);
+    result = o.result;
+    const std::string status = status_of(o);
+    if (!opt.quiet) std::cerr << " " << status << "\n";
+    return status;
+  };
+  if (asks("icm") || (connected && wants_cgal)) {
+    Child_result icm;
+    const std::string status = icm_run(true, asks("icm"), icm);
+    if (connected && wants_cgal) {
+      if (status != "ok") {
+        no_cut = "skipped: no cut (icm " + status + ")";
+      } else if (extra_value(icm, "charts") > 1) {
+        Child_result raw;
+        const bool show = asks("icm") || asks("icm_keep_overlaps");
+        const std::string raw_status = icm_run(false, show, raw);
+        if (show && !asks("icm_keep_overlaps"))
+          names.insert(std::find(names.begin(), names.end(), "icm") + 1, "icm_keep_overlaps");
+        if (raw_status == "ok") {
+          cut = raw.seams;
+          cut_name = "icm_keep_overlaps";
+        } else {
+          no_cut = "skipped: no cut (icm_keep_overlaps " + raw_status + ")";
+        }
+      } else {
+        cut = icm.seams;
+        cut_name = "icm";
+      }
+    }
+  }
+
+  bool first = true;
+  for (const std::string& name : names) {
+    Row row;
+    if (done.count(name)) {
+      row = done[name];
+    } else if (name == "icm" || name == "icm_keep_overlaps") {
+      progress(name);
+      Child_result result;
+      row = run_job(icm_job(mesh, name == "icm"), name, opt, base, &result);
+      add_icm_report(row, result);
+      progress_done(row);
+    } else if (const Seam_method* m = seam_method(name)) {
+      row = base;
+      row.method = name;
+      if (!connected) {
+        row.status = "skipped: " + std::to_string(topology.components) +
+                     " components (CGAL's parameterizers take one connected mesh)";
+      } else if (!no_cut.empty()) {
+        row.status = no_cut;
+      } else {
+        progress(name);
+        row = run_job(seam_job(mesh, cut, *m), name, opt, base);
+        row.detail = "cut: " + cut_name;
+        row.json_extra.emplace_back("cut", "\"" + cut_name + "\"");
+        row.json_extra.emplace_back("cut_seam_edges", std::to_string(cut.size()));
+        progress_done(row);
+      }
+    } else if (name == "icm_free_boundary_opened") {
+      row = base;
+      row.method = name;
+      if (!connected || !topology.closed()) {
+        row.status = connected ? "skipped: the mesh is not closed"
+                               : "skipped: " + std::to_string(topology.components) + " components";
+      } else {
+        Mesh opened = mesh;
+        open_at_first_vertex(opened);
+        opened.collect_garbage();
+        const std::string skip = disk_check(opened);
+        const auto method = std::find_if(registry.begin(), registry.end(), [](const Method& r) {
+          return r.name == "icm_free_boundary";
+        });
+        if (!skip.empty()) {
+          row.status = "skipped: the opened mesh is " + skip.substr(std::string("skipped: ").size());
+        } else {
+          progress(name);
+          Child_result result;
+          row = run_job(method_job(opened, *method), name, opt, base, &result);
+          row.json_extra.emplace_back("opened_vertices", std::to_string(num_vertices(opened)));
+          row.json_extra.emplace_back("opened_faces", std::to_string(num_faces(opened)));
+          // The parameterizer's report: its stage times and why it fell back, if it did.
+          for (const auto& [key, value] : result.extra)
+            row.json_extra.emplace_back(key, json_num(value));
+          row.json_extra.emplace_back(
+              "fallback_reason", result.fallback_reason.empty()
+                                     ? std::string("null")
+                                     : "\"" + json_escape(result.fallback_reason) + "\"");
+          row.note = "opened: " + std::to_string(num_faces(opened)) + " faces";
+          if (!result.extra.empty() && row.status == "ok") {
+            auto x = [&](const char* key) { return fmt_seconds(extra_value(result, key)); };
+            row.note += "; index " + x("seconds_index") + " s, metric " + x("seconds_metric") +
+                        " s, optimum " + x("seconds_optimum") + " s, layout " +
+                        x("seconds_layout") + " s";
+          }
+          if (!result.fallback_reason.empty())
+            row.note += "; fell back: " + result.fallback_reason;
+          progress_done(row);
+        }
+      }
+    } else {  // a registry method for disks only
+      row = base;
+      row.method = name;
+      Mesh copy = mesh;
+      row.status = disk_check(copy);
+    }
+    emit(row, first, opt);
+    first = false;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -938,21 +1402,20 @@ int main(int argc, char** argv) {
   const std::vector<Method> registry = make_registry();
   const Options opt = parse_options(argc, argv, registry);
 
-  std::vector<const Method*> methods;
-  for (const Method& m : registry)
-    if (opt.methods.empty() ||
-        std::find(opt.methods.begin(), opt.methods.end(), m.name) != opt.methods.end())
-      methods.push_back(&m);
-  // Keep the order the user gave.
-  if (!opt.methods.empty()) {
-    methods.clear();
-    for (const std::string& name : opt.methods)
-      for (const Method& m : registry)
-        if (m.name == name &&
-            std::find(methods.begin(), methods.end(), &m) == methods.end())
-          methods.push_back(&m);
-  }
+  const std::vector<Seam_method> seam_registry = make_seam_registry();
+  // The names asked for, once each, in the order given (default: the whole registry for a
+  // disk; see surface_names() for the other meshes).
+  std::vector<std::string> asked;
+  for (const std::string& name : opt.methods)
+    if (std::find(asked.begin(), asked.end(), name) == asked.end()) asked.push_back(name);
 
+  if (!opt.json_file.empty()) {
+    json_file.open(opt.json_file);
+    if (!json_file) {
+      std::cerr << "compare: cannot write " << opt.json_file << "\n";
+      return 2;
+    }
+  }
   if (!opt.json) {
     std::cout << "# Parameterization comparison\n\n"
               << "Machine: " << machine_description() << "  \n"
@@ -985,34 +1448,39 @@ int main(int argc, char** argv) {
     base.vertices = num_vertices(mesh);
     base.faces = num_faces(mesh);
 
-    const std::string skip = disk_check(mesh);
-    if (!skip.empty()) {
-      if (!opt.quiet) std::cerr << "compare: " << base.mesh << ": " << skip << "\n";
-      for (std::size_t i = 0; i < methods.size(); ++i) {
-        Row r = base;
-        r.method = methods[i]->name;
-        r.status = skip;
-        if (opt.json) print_json(r);
-        else if (i == 0) {
-          r.method = "(all)";
-          print_markdown_row(r, true);
-        }
-      }
+    const Topology topology = topology_of(mesh);
+    if (!topology.disk()) {
+      run_surface(mesh, topology, base, opt, asked, registry, seam_registry);
       continue;
     }
 
+    std::vector<std::string> names = asked;
+    if (names.empty())
+      for (const Method& m : registry) names.push_back(m.name);
     bool first = true;
-    for (const Method* method : methods) {
+    for (const std::string& name : names) {
+      const auto method = std::find_if(registry.begin(), registry.end(),
+                                       [&](const Method& m) { return m.name == name; });
       if (!opt.quiet)
-        std::cerr << "compare: " << base.mesh << " (" << base.faces << " faces): "
-                  << method->name << " ..." << std::flush;
-      const Row row = run_method(mesh, *method, opt, base);
+        std::cerr << "compare: " << base.mesh << " (" << base.faces << " faces): " << name
+                  << " ..." << std::flush;
+      Row row;
+      if (method != registry.end()) {
+        row = run_method(mesh, *method, opt, base);
+      } else if (name == "icm" || name == "icm_keep_overlaps") {
+        Child_result result;
+        row = run_job(icm_job(mesh, name == "icm"), name, opt, base, &result);
+        add_icm_report(row, result);
+      } else {  // icm_free_boundary_opened
+        row = base;
+        row.method = name;
+        row.status = "skipped: the mesh is not closed";
+      }
       if (!opt.quiet)
         std::cerr << " " << row.status
                   << (std::isfinite(row.seconds) ? ", " + fmt_seconds(row.seconds) + " s" : "")
                   << "\n";
-      if (opt.json) print_json(row);
-      else print_markdown_row(row, first);
+      emit(row, first, opt);
       first = false;
     }
   }
