@@ -68,6 +68,28 @@ inline int central_face(const internal::Mesh_index& index)
   return last;
 }
 
+/// The faces around each vertex, in compressed rows: those of v are
+/// `faces[first[v]] .. faces[first[v + 1] - 1]`.
+struct Faces_around_vertices
+{
+  std::vector<int> first, faces;
+
+  explicit Faces_around_vertices(const internal::Mesh_index& index) : first(index.number_of_vertices() + 1, 0)
+  {
+    const int nv = index.number_of_vertices();
+    for(const auto& f : index.faces)
+      for(int v : f)
+        ++first[v + 1];
+    for(int v = 0; v < nv; ++v)
+      first[v + 1] += first[v];
+    faces.resize(first[nv]);
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for(int f = 0; f < index.number_of_faces(); ++f)
+      for(int v : index.faces[f])
+        faces[fill[v]++] = f;
+  }
+};
+
 /// Unfolds the faces from the central face. Vertex c of a face entered across its edge
 /// (a, b) — in the face's orientation — is a + l_ac R(theta_a) (b - a)/|b - a|, so every
 /// face keeps the input orientation (counter-clockwise = positive area).
@@ -90,20 +112,8 @@ inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& in
   std::vector<Uv> uv(nv, Uv{0.0, 0.0});
   if(nf == 0)
     return uv;
-  // Faces around each vertex (compressed rows).
-  std::vector<int> first(nv + 1, 0), ring;
-  for(const auto& f : index.faces)
-    for(int v : f)
-      ++first[v + 1];
-  for(int v = 0; v < nv; ++v)
-    first[v + 1] += first[v];
-  ring.resize(first[nv]);
-  {
-    std::vector<int> fill(first.begin(), first.end() - 1);
-    for(int f = 0; f < nf; ++f)
-      for(int v : index.faces[f])
-        ring[fill[v]++] = f;
-  }
+  const Faces_around_vertices around(index);
+  const std::vector<int>&first = around.first, &ring = around.faces;
 
   constexpr double eps = std::numeric_limits<double>::epsilon();
   std::vector<double> error(nv, HUGE_VAL); // finite once placed
@@ -374,18 +384,8 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
 {
   if(count_flipped_faces(index, uv) == 0)
     return 0;
-  const int nv = index.number_of_vertices();
-  std::vector<int> first(nv + 1, 0), ring;
-  for(const auto& f : index.faces)
-    for(int v : f)
-      ++first[v + 1];
-  for(int v = 0; v < nv; ++v)
-    first[v + 1] += first[v];
-  ring.resize(first[nv]);
-  std::vector<int> fill(first.begin(), first.end() - 1);
-  for(int f = 0; f < index.number_of_faces(); ++f)
-    for(int v : index.faces[f])
-      ring[fill[v]++] = f;
+  const Faces_around_vertices around(index);
+  const std::vector<int>&first = around.first, &ring = around.faces;
 
   auto twin_of = [&](int v) -> const Seam_twin* {
     return twins.empty() || twins[v].wedge < 0 ? nullptr : &twins[v];

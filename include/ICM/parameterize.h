@@ -304,7 +304,7 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
     uv.resize(match.size());
     for(std::size_t w = 0; w < match.size(); ++w)
       uv[w] = intrinsic_uv[match[w]];
-    if(check.flipped_faces == 0)
+    if(check.flipped_faces == 0 && count_flipped_faces(cut.disk, uv) > 0)
     {
       // A wedge may move when it is its vertex's only one (not on a seam), or with its twin
       // across a seam through a flat vertex.
