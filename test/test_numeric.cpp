@@ -197,7 +197,7 @@ TEST(DynamicLaplacian, RestrictedMatrixMatchesTheWeights)
   ICM::Dynamic_laplacian<ICM::Simplicial_solver> laplacian(index, interior_of(index));
   laplacian.assemble(w);
   ASSERT_TRUE(laplacian.factorize()); // positive definite: the border is fixed
-  const Eigen::MatrixXd dense = Eigen::MatrixXd(laplacian.matrix()).selfadjointView<Eigen::Lower>();
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(laplacian.matrix()).selfadjointView<Eigen::Upper>();
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const int i = laplacian.free_index(index.edges[e][0]), j = laplacian.free_index(index.edges[e][1]);

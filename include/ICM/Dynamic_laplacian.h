@@ -3,8 +3,9 @@
 //
 // Restricting to a free set covers every use: Algorithm 1 pins one vertex (the kernel of
 // Delta is the constant vector), the free-boundary optimum frees the non-singular vertices,
-// and the harmonic layout frees the interior. Only the lower triangle is stored, the layout
-// both Eigen's SimplicialLDLT and CHOLMOD read.
+// and the harmonic layout frees the interior. Only the upper triangle is stored: Eigen's
+// SimplicialLDLT factorizes it in place (from a lower triangle it would copy and transpose
+// the matrix at every factorization and analysis) and CHOLMOD reads either.
 //
 // The unknowns are numbered in a fill-reducing (AMD) order computed once from the first
 // pattern. A metric that flips its triangulation changes a few entries per Newton step;
@@ -24,6 +25,8 @@
 #endif
 
 #include <algorithm>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace ICM {
@@ -34,17 +37,33 @@ using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 /// always available, and the fastest choice for small and medium meshes (benchmark/kernels:
 /// 0.40 ms at 3.7k faces, 43 ms at 59k, 0.48 s at 235k, ahead of CHOLMOD's supernodal LL^T)
 /// because mesh Laplacians have small supernodes.
-using Simplicial_solver = Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Lower, Eigen::NaturalOrdering<int>>;
+///
+/// The analysis reads the matrix in place: Eigen 3.4 recognises "no ordering" only as
+/// `NaturalOrdering<Eigen::Index>`, which does not compile with int indices, and otherwise
+/// copies the matrix twice per analysis (as long as a factorization on horse).
+class Simplicial_solver
+  : public Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Eigen::NaturalOrdering<int>>
+{
+public:
+  void analyzePattern(const Sparse_matrix& matrix)
+  {
+    m_P.resize(0);
+    m_Pinv.resize(0);
+    analyzePattern_preordered(matrix, true);
+  }
+  /// Entries of the factor the last analysis predicts.
+  Eigen::Index factor_nonzeros() const { return m_nonZerosPerCol.sum(); }
+};
 
 #ifdef ICM_HAS_CHOLMOD
 /// CHOLMOD's supernodal LL^T with its default ordering (SuiteSparse).
-using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Lower>;
+using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Upper>;
 
 /// CHOLMOD's simplicial LDL^T after a nested dissection ordering (NESDIS). AMD's fill grows
 /// badly on large planar-like graphs: on lion-head refined to 1.07M faces one numeric
 /// factorization takes 15.5 s with AMD and 2.7 s after nested dissection, whose analysis
 /// (2.8 s, done once) only pays off from about 10^5 unknowns (measured, one thread).
-class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Lower>
+class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Upper>
 {
 public:
   Nested_dissection_solver()
@@ -92,6 +111,9 @@ public:
   }
   /// Whether the last `analyzePattern` chose nested dissection.
   bool uses_nested_dissection() const { return nested_; }
+  /// Entries of the simplicial factor the last analysis predicts; 0 after nested dissection,
+  /// whose order does not go stale the way AMD's does.
+  Eigen::Index factor_nonzeros() const { return nested_ ? 0 : simplicial_.factor_nonzeros(); }
 
 private:
   bool nested_ = false;
@@ -102,6 +124,15 @@ using Default_sparse_solver = Size_adaptive_solver;
 #else
 using Default_sparse_solver = Simplicial_solver;
 #endif
+
+/// Whether a solver reports the fill of its factor (`factor_nonzeros()`).
+template <class Solver, class = void>
+struct Reports_fill : std::false_type
+{};
+template <class Solver>
+struct Reports_fill<Solver, std::void_t<decltype(std::declval<const Solver&>().factor_nonzeros())>>
+  : std::true_type
+{};
 
 /// Delta(u) restricted to a free vertex set: Delta_ii = sum_j w_ij over all neighbours,
 /// Delta_ij = -w_ij between free neighbours. Two edges between the same vertices (possible
@@ -120,19 +151,25 @@ public:
         free_of_[v] = static_cast<int>(vertex_of_.size());
         vertex_of_.push_back(v);
       }
-    build_pattern();
-    number_unknowns_in_fill_reducing_order();
-    rebuild_pattern();
+    diagonal_slot_.resize(size());
+    order_and_analyze();
   }
 
   /// Rebuilds the pattern from the edges of the index (after edge flips) and analyses it
-  /// again; the next solve needs a new factorization.
-  void rebuild_pattern()
+  /// again; the next solve needs a new factorization. Flips can make the fill-reducing order
+  /// stale: on lion-head 125 flips (0.5% of the edges) grow the factor by 17%. When the
+  /// solver reports its fill (`factor_nonzeros()`) and it grew by more than
+  /// `max_fill_growth` since the unknowns were numbered, they are numbered again: AMD costs
+  /// about a third of a factorization there, and a factor 10% larger costs more than that
+  /// over the remaining Newton steps. Returns whether the unknowns were renumbered.
+  bool rebuild_pattern(double max_fill_growth = 0.1)
   {
     build_pattern();
-    if(size() > 0)
-      solver_.analyzePattern(matrix_);
-    factorized_ = false;
+    analyze();
+    if(!(factor_nonzeros() > (1.0 + max_fill_growth) * ordered_fill_))
+      return false;
+    order_and_analyze();
+    return true;
   }
 
   int size() const { return static_cast<int>(vertex_of_.size()); }
@@ -195,7 +232,7 @@ public:
     for(int refinement = 0; refinement < max_refinements; ++refinement)
     {
       const typename Rhs::PlainObject correction =
-        solver_.solve(b - matrix_.template selfadjointView<Eigen::Lower>() * x);
+        solver_.solve(b - matrix_.template selfadjointView<Eigen::Upper>() * x);
       x += correction;
       if(correction.norm() <= tolerance * x.norm())
         return x.allFinite();
@@ -204,6 +241,32 @@ public:
   }
 
 private:
+  /// Numbers the unknowns in a fill-reducing order of the current edges, then analyses.
+  void order_and_analyze()
+  {
+    build_pattern();
+    number_unknowns_in_fill_reducing_order();
+    build_pattern();
+    analyze();
+    ordered_fill_ = factor_nonzeros();
+  }
+
+  /// The fill the solver predicts, or 0 when it does not say.
+  double factor_nonzeros() const
+  {
+    if constexpr(Reports_fill<SparseSolver>::value)
+      return size() > 0 ? static_cast<double>(solver_.factor_nonzeros()) : 0.0;
+    else
+      return 0.0;
+  }
+
+  void analyze()
+  {
+    if(size() > 0)
+      solver_.analyzePattern(matrix_);
+    factorized_ = false;
+  }
+
   /// Renumbers the unknowns by Eigen's AMD ordering of the current pattern.
   void number_unknowns_in_fill_reducing_order()
   {
@@ -219,49 +282,77 @@ private:
         vertex_of_[free_of_[v]] = v;
   }
 
+  /// The upper triangle of the free vertices' adjacency, column by column, and the slot of
+  /// every edge in it, in two passes over the edges and no search: this runs again after
+  /// every Newton step whose edge flips changed the triangulation.
   void build_pattern()
   {
     const int n = size();
-    std::vector<Eigen::Triplet<double, int>> entries;
-    entries.reserve(n + index_.number_of_edges());
+    const int ne = index_.number_of_edges();
+    // Entries of column j: (row i <= j, edge e), the diagonal with e = -1.
+    std::vector<int>& start = column_start_;
+    start.assign(n + 1, 0);
     for(int i = 0; i < n; ++i)
-      entries.emplace_back(i, i, 1.0);
-    for(const auto& e : index_.edges)
-    {
-      const int i = free_of_[e[0]], j = free_of_[e[1]];
-      if(i >= 0 && j >= 0)
-        entries.emplace_back(std::max(i, j), std::min(i, j), 1.0);
-    }
-    matrix_.resize(n, n);
-    matrix_.setFromTriplets(entries.begin(), entries.end());
-    matrix_.makeCompressed();
-
-    diagonal_slot_.resize(n);
-    for(int i = 0; i < n; ++i)
-      diagonal_slot_[i] = slot(i, i);
-    edge_slot_.assign(index_.number_of_edges(), -1);
-    for(int e = 0; e < index_.number_of_edges(); ++e)
+      start[i + 1] = 1;
+    for(int e = 0; e < ne; ++e)
     {
       const int i = free_of_[index_.edges[e][0]], j = free_of_[index_.edges[e][1]];
-      if(i >= 0 && j >= 0)
-        edge_slot_[e] = slot(std::max(i, j), std::min(i, j));
+      if(i >= 0 && j >= 0 && i != j)
+        ++start[std::max(i, j) + 1];
     }
-  }
+    for(int i = 0; i < n; ++i)
+      start[i + 1] += start[i];
+    entries_.resize(start[n]);
+    next_.assign(start.begin(), start.end() - 1);
+    for(int i = 0; i < n; ++i)
+      entries_[next_[i]++] = {i, -1};
+    edge_slot_.assign(ne, -1);
+    for(int e = 0; e < ne; ++e)
+    {
+      const int i = free_of_[index_.edges[e][0]], j = free_of_[index_.edges[e][1]];
+      if(i >= 0 && j >= 0 && i != j)
+        entries_[next_[std::max(i, j)]++] = {std::min(i, j), e};
+    }
 
-  /// Offset of entry (row, col) in the compressed value array.
-  int slot(int row, int col) const
-  {
-    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
-    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
-    return static_cast<int>(std::lower_bound(begin, end, row) - matrix_.innerIndexPtr());
+    // Sort each column by row (a handful of entries: insertion sort) and merge the entries
+    // of two edges that join the same vertices, possible in an intrinsic triangulation.
+    matrix_.resize(n, n);
+    matrix_.resizeNonZeros(start[n]);
+    int* outer = matrix_.outerIndexPtr();
+    int* inner = matrix_.innerIndexPtr();
+    int nonzeros = 0;
+    for(int j = 0; j < n; ++j)
+    {
+      std::pair<int, int>* first = entries_.data() + start[j];
+      std::pair<int, int>* last = entries_.data() + start[j + 1];
+      for(std::pair<int, int>* x = first + 1; x < last; ++x)
+        for(std::pair<int, int>* y = x; y > first && y[-1].first > y[0].first; --y)
+          std::swap(y[-1], y[0]);
+      outer[j] = nonzeros;
+      for(std::pair<int, int>* x = first; x < last; ++x)
+      {
+        if(x == first || x->first != x[-1].first)
+          inner[nonzeros++] = x->first;
+        if(x->second >= 0)
+          edge_slot_[x->second] = nonzeros - 1;
+        else
+          diagonal_slot_[j] = nonzeros - 1;
+      }
+    }
+    outer[n] = nonzeros;
+    matrix_.resizeNonZeros(nonzeros);
+    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + nonzeros, 0.0);
   }
 
   const internal::Mesh_index& index_;
   std::vector<int> free_of_;
   std::vector<int> vertex_of_;
+  double ordered_fill_ = 0; ///< factor_nonzeros() when the unknowns were numbered
   Sparse_matrix matrix_;
   std::vector<int> diagonal_slot_;
   std::vector<int> edge_slot_;
+  std::vector<int> column_start_, next_;          // build_pattern's scratch, kept between rebuilds
+  std::vector<std::pair<int, int>> entries_;
   SparseSolver solver_;
   bool factorized_ = false;
 };

@@ -108,23 +108,56 @@ inline void flip_edge(Mesh_index& t, int e, const Edge_diamond& x)
   t.edges[e] = {std::min(s.p, s.q), std::max(s.p, s.q)};
 }
 
-/// Whether the scaled metric is Delaunay at edge ab: the angles opposite it sum to at most
-/// pi. With sides scaled by sqrt(g_i g_j), (cos theta_p) / l_ab in face (p, a, b) is
+/// One face's half of the Delaunay test of its side ab, seen from the opposite corner p.
+/// With sides scaled by sqrt(g_i g_j), (cos theta_p) / l_ab in face (p, a, b) is
 /// (l_bp^2 / g_a + l_pa^2 / g_b - l_ab^2 / g_p) / (2 l_bp l_pa): in this form the test is
 /// defined for any positive lengths, triangles or not (the horocyclic form of Penner
-/// coordinates), and cos theta_p + cos theta_q >= 0 is the Delaunay condition. Ties within
-/// rounding count as Delaunay, so that cocircular diamonds do not flip back and forth.
+/// coordinates). `scale` is the magnitude the rounding of `value` is relative to.
+struct Delaunay_half
+{
+  double value = 0, scale = 0;
+};
+
+inline Delaunay_half delaunay_half(double l_bp, double l_pa, double l_ab, double g_a, double g_b, double g_p)
+{
+  const double bp = l_bp * l_bp / g_a, pa = l_pa * l_pa / g_b, ab = l_ab * l_ab / g_p;
+  const double sides = l_bp * l_pa;
+  return {(bp + pa - ab) / sides, (std::abs(bp) + std::abs(pa) + ab) / sides};
+}
+
+/// cos theta_p + cos theta_q >= 0, the Delaunay condition. Ties within rounding count as
+/// Delaunay, so that cocircular diamonds do not flip back and forth.
+inline bool is_delaunay(const Delaunay_half& f, const Delaunay_half& g)
+{
+  return !(f.value + g.value < -1e-12 * (f.scale + g.scale));
+}
+
+/// Whether the scaled metric is Delaunay at the diamond's edge ab.
 inline bool is_delaunay_edge(const Diamond_sides& s, int e, const std::vector<double>& l,
                              const std::vector<double>& g)
 {
-  const double ab2 = l[e] * l[e];
-  const double fp[3] = {l[s.bp] * l[s.bp] / g[s.a], l[s.pa] * l[s.pa] / g[s.b], -ab2 / g[s.p]};
-  const double fq[3] = {l[s.qb] * l[s.qb] / g[s.a], l[s.aq] * l[s.aq] / g[s.b], -ab2 / g[s.q]};
-  const double in_f = fp[0] + fp[1] + fp[2], in_g = fq[0] + fq[1] + fq[2];
-  const double scale = (std::abs(fp[0]) + std::abs(fp[1]) - fp[2]) / (l[s.bp] * l[s.pa]) +
-                       (std::abs(fq[0]) + std::abs(fq[1]) - fq[2]) / (l[s.qb] * l[s.aq]);
-  const double sum = in_f / (l[s.bp] * l[s.pa]) + in_g / (l[s.qb] * l[s.aq]);
-  return !(sum < -1e-12 * scale);
+  return is_delaunay(delaunay_half(l[s.bp], l[s.pa], l[e], g[s.a], g[s.b], g[s.p]),
+                     delaunay_half(l[s.qb], l[s.aq], l[e], g[s.a], g[s.b], g[s.q]));
+}
+
+/// Both halves of the Delaunay test of every edge, accumulated face by face: each face's
+/// corner terms are computed once instead of once per diamond.
+inline void accumulate_delaunay_halves(const Mesh_index& t, const std::vector<double>& l,
+                                       const std::vector<double>& g, std::vector<Delaunay_half>& halves)
+{
+  halves.assign(t.number_of_edges(), Delaunay_half());
+  for(int f = 0; f < t.number_of_faces(); ++f)
+  {
+    const std::array<int, 3>& v = t.faces[f];
+    const std::array<int, 3>& e = t.face_edges[f];
+    for(int c = 0; c < 3; ++c)
+    {
+      const int next = (c + 1) % 3, last = (c + 2) % 3;
+      const Delaunay_half h = delaunay_half(l[e[next]], l[e[last]], l[e[c]], g[v[next]], g[v[last]], g[v[c]]);
+      halves[e[c]].value += h.value;
+      halves[e[c]].scale += h.scale;
+    }
+  }
 }
 
 /// Length of the new diagonal pq of a Euclidean diamond: unfolded at a, |pq|^2 = |pa|^2 +
@@ -213,9 +246,12 @@ private:
   int flip_to_delaunay(const std::vector<double>& g, Flip_rule rule)
   {
     internal::Mesh_index& t = triangulation_;
+    // Lawson's stack starts with the edges that fail the test; a flip re-examines its
+    // diamond's sides one by one.
+    internal::accumulate_delaunay_halves(t, base_lengths_, g, halves_);
     stack_.clear();
     for(int e = 0; e < t.number_of_edges(); ++e)
-      if(!is_fixed_[e] && t.edge_faces[e][1] >= 0)
+      if(!is_fixed_[e] && t.edge_faces[e][1] >= 0 && !internal::is_delaunay(halves_[e], {}))
       {
         stack_.push_back(e);
         in_stack_[e] = 1;
@@ -256,6 +292,7 @@ private:
   std::vector<char> is_fixed_;
   std::vector<int> stack_;
   std::vector<char> in_stack_;
+  std::vector<internal::Delaunay_half> halves_;
   long flips_ = 0;
   int mesh_flips_ = 0;
 };

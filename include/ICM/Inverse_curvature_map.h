@@ -116,7 +116,8 @@ public:
         return report;
       }
       t = Clock::now();
-      update_pattern();
+      if(update_pattern())
+        free_residual(k_target, k_, residual); // the unknowns were numbered again
       laplacian_.assemble(w_);
       if(!laplacian_.factorize())
       {
@@ -193,13 +194,14 @@ public:
   }
 
 private:
-  /// A metric that flips its triangulation changes the Laplacian's pattern.
-  void update_pattern()
+  /// A metric that flips its triangulation changes the Laplacian's pattern. Returns whether
+  /// the unknowns were numbered again.
+  bool update_pattern()
   {
     if(curvature_.triangulation_version() == pattern_version_)
-      return;
-    laplacian_.rebuild_pattern();
+      return false;
     pattern_version_ = curvature_.triangulation_version();
+    return laplacian_.rebuild_pattern();
   }
 
   void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k,

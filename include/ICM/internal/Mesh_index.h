@@ -10,7 +10,7 @@
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Dynamic_property_map.h>
 
 #include <algorithm>
 #include <array>
@@ -152,16 +152,26 @@ inline Index_status build_connectivity(Mesh_index& index)
   using namespace CGAL::Surface_mesh_parameterization;
   const int nf = index.number_of_faces();
 
-  // (min vertex, max vertex, face, corner opposite the edge)
-  std::vector<std::array<int, 4>> sides;
-  sides.reserve(3 * static_cast<std::size_t>(nf));
+  // (min vertex, max vertex, face, corner opposite the edge), in lexicographic order:
+  // bucketed by min vertex, then each bucket (a few sides) sorted in place, which costs a
+  // fraction of sorting all 3F sides at once.
+  const int nv = index.number_of_vertices();
+  std::vector<int> bucket_start(nv + 1, 0);
+  for(int f = 0; f < nf; ++f)
+    for(int c = 0; c < 3; ++c)
+      ++bucket_start[std::min(index.faces[f][(c + 1) % 3], index.faces[f][(c + 2) % 3]) + 1];
+  for(int v = 0; v < nv; ++v)
+    bucket_start[v + 1] += bucket_start[v];
+  std::vector<std::array<int, 4>> sides(3 * static_cast<std::size_t>(nf));
+  std::vector<int> next(bucket_start.begin(), bucket_start.end() - 1);
   for(int f = 0; f < nf; ++f)
     for(int c = 0; c < 3; ++c)
     {
       const int a = index.faces[f][(c + 1) % 3], b = index.faces[f][(c + 2) % 3];
-      sides.push_back({std::min(a, b), std::max(a, b), f, c});
+      sides[next[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), f, c};
     }
-  std::sort(sides.begin(), sides.end());
+  for(int v = 0; v < nv; ++v)
+    std::sort(sides.begin() + bucket_start[v], sides.begin() + bucket_start[v + 1]);
 
   index.edges.clear();
   index.edge_faces.clear();
@@ -216,6 +226,37 @@ inline Index_status check_geometry(const Mesh_index& index)
   return {};
 }
 
+/// The faces of the connected component of `seed`, in the order of CGAL's
+/// `Polygon_mesh_processing::connected_component` (depth first, each face where it is first
+/// taken from the stack). CGAL marks the faces seen in a std::set, a fifth of the time of
+/// indexing lion-head; a face property map does it in linear time.
+template <class TriangleMesh>
+std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>
+faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<TriangleMesh>::face_descriptor seed)
+{
+  using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
+  auto seen = get(CGAL::dynamic_face_property_t<bool>(), mesh);
+  for(face_descriptor f : faces(mesh))
+    put(seen, f, false); // dynamic maps start with an unspecified value
+  std::vector<face_descriptor> component, stack{seed};
+  while(!stack.empty())
+  {
+    const face_descriptor f = stack.back();
+    stack.pop_back();
+    if(get(seen, f))
+      continue;
+    put(seen, f, true);
+    component.push_back(f);
+    for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+    {
+      const face_descriptor g = face(opposite(h, mesh), mesh);
+      if(g != boost::graph_traits<TriangleMesh>::null_face())
+        stack.push_back(g);
+    }
+  }
+  return component;
+}
+
 /// Indexes the connected component of `mesh` that contains face `seed`, as CGAL's
 /// parameterizers do with the component of their border halfedge.
 /// `vertices` receives the descriptor of each compact vertex index, so results can be written
@@ -239,8 +280,7 @@ Index_status index_mesh(const TriangleMesh& mesh,
   if(faces(mesh).empty() || seed == boost::graph_traits<TriangleMesh>::null_face())
     return {ERROR_EMPTY_MESH, "the mesh has no faces"};
 
-  std::vector<face_descriptor> component;
-  CGAL::Polygon_mesh_processing::connected_component(seed, mesh, std::back_inserter(component));
+  const std::vector<face_descriptor> component = faces_of_component(mesh, seed);
   if(face_descriptors)
     *face_descriptors = component;
 
