@@ -3,7 +3,8 @@
 # build/ configured and built by scripts/build.sh):
 # 1. `cmake --install` into a temporary prefix; test/consumer (find_package(ICM CONFIG
 #    REQUIRED) + target_link_libraries(... ICM::ICM), nothing else) configured against it,
-#    built, and run on a bundled mesh; with CHOLMOD in the package the consumer must get it.
+#    built, and run on a bundled mesh; with CHOLMOD in the package the consumer must get it,
+#    can opt out of it, and is told what is missing when it is not there.
 # 2. test/subproject: a parent that add_subdirectory()s ICM keeps its build type (Debug, and
 #    none) and gets no ICM test, benchmark or tool; it is built and run too.
 set -euo pipefail
@@ -41,6 +42,15 @@ if grep -q '^set(ICM_HAS_CHOLMOD ON)' "$config_dir/ICMConfig.cmake"; then
   configure "$work/no-cholmod.log" -S test/consumer -B "$work/consumer-no-cholmod" \
     -DCMAKE_PREFIX_PATH="$work/prefix" -DICM_WITH_CHOLMOD=OFF
   grep -q 'CHOLMOD: OFF' "$work/no-cholmod.log" || fail "ICM_WITH_CHOLMOD=OFF is not honoured"
+  # CHOLMOD missing on the user's machine (its headers hidden from the search): find_package
+  # fails and says why (configured only).
+  cholmod_include=$(sed -n 's/^ICM_CHOLMOD_INCLUDE_DIR:PATH=//p' build/CMakeCache.txt)
+  if cmake -S test/consumer -B "$work/consumer-missing" -DCMAKE_PREFIX_PATH="$work/prefix" \
+       -DCMAKE_IGNORE_PATH="$cholmod_include" >"$work/missing.log" 2>&1; then
+    fail "find_package(ICM) succeeded without the CHOLMOD it was installed with"
+  fi
+  grep -q 'installed with SuiteSparse CHOLMOD, which is not found' "$work/missing.log" \
+    || { cat "$work/missing.log"; fail "find_package(ICM) without CHOLMOD does not say why"; }
 fi
 
 echo "== test/subproject: add_subdirectory(ICM) in a Debug parent"
