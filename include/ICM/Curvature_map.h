@@ -90,7 +90,7 @@ public:
   const std::vector<double>& lengths() const { return lengths_; }
 
   /// Curvature k at `u`: 2 pi - angle sum inside, pi - angle sum on the border.
-  /// When `weights` is given, also the per-edge Laplacian weights w_e (size #edges).
+  /// When `weights` is given, also the per-edge Laplacian weights w_e (one per edge).
   /// Returns the number of faces whose lengths at `u` are not a triangle (always 0 for the
   /// circle packing); k is then meaningless.
   int evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& k, std::vector<double>* weights = nullptr)

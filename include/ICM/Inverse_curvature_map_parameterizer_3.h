@@ -159,7 +159,7 @@ struct Parameterization_report
 ///
 /// \tparam TriangleMesh a model of `FaceGraph`
 /// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is
-///         `Default_metric` (`Vertex_scaling_metric`, chosen by measurement: doc/benchmarks.md)
+///         `Default_metric` (`Intrinsic_delaunay_metric`, chosen by measurement: doc/benchmarks.md)
 /// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is `Default_sparse_solver`:
 ///         Eigen's `SimplicialLDLT`, switching to CHOLMOD after nested dissection for large
 ///         meshes when SuiteSparse is present (`Size_adaptive_solver`).
@@ -173,13 +173,17 @@ public:
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
 
+  /// A parameterizer with these options (doc/parameterizer.md).
   explicit Inverse_curvature_map_parameterizer_3(
     const Parameterization_options& options = Parameterization_options())
     : options_(options), report_(std::make_shared<Parameterization_report>())
   {}
 
+  /// The options of the next `parameterize()` call.
   Parameterization_options& options() { return options_; }
   const Parameterization_options& options() const { return options_; }
+  /// What the last `parameterize()` call of this object or of any copy of it did
+  /// (doc/report.md).
   const Parameterization_report& report() const { return *report_; }
 
   /// Parameterizes the component of `bhd`. `vimap` and `vpmap` follow CGAL's concept: the

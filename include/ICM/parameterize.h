@@ -90,6 +90,8 @@ struct Chart_report
   double seam_length_error = 0;        ///< max relative difference of a seam's two sides
 };
 
+/// What `ICM::parameterize` did: the status, the reason of a failure, one `Chart_report` per
+/// connected component and the seconds of each stage (doc/report.md).
 struct Surface_parameterization_report
 {
   CGAL::Surface_mesh_parameterization::Error_code status =
@@ -518,6 +520,9 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 ///         the corner across `next(h)`). It serves directly as the UV map of a
 ///         `CGAL::Seam_mesh` whose seams are `seam_edges`.
 /// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is `Default_metric`
+/// \param mesh the triangle mesh; it is not modified
+/// \param uv_map receives one UV per corner (see `HalfedgeUVMap`)
+/// \param options cones, Newton, fallback and overlap options (doc/parameterizer.md)
 /// \param user_cones vertices that must be singular: with a curvature 2 pi - angle, or NaN
 ///        to leave the angle to the optimum (Thm 3.5)
 /// \param seam_edges if not null, receives the seam edges of every chart
@@ -525,6 +530,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 ///        any of these edges is cut along exactly them (they must cut it into one disk through
 ///        every user cone), their ends and branch points become singular with a free angle
 ///        and no automatic cone is added; a component without any is cut as usual
+/// \returns the status, the reason of a failure and one `Chart_report` per component
+///          (doc/report.md)
 template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class TriangleMesh,
           class HalfedgeUVMap>
 Surface_parameterization_report parameterize(
