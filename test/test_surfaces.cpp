@@ -404,7 +404,9 @@ TEST(Surfaces, HorseOverlapIsRemovedByDefaultAndKeptOnRequest)
   if(!icm_test::shared_dir_exists())
     GTEST_SKIP() << "shared meshes not present";
   Mesh mesh = read(icm_test::shared_path("horse.obj"));
-  const Result removed = run(mesh, "horse");
+  ICM::Surface_parameterization_options free_border;
+  free_border.automatic_cones = false;
+  const Result removed = run(mesh, "horse", free_border);
   ASSERT_EQ(removed.report.charts.size(), 1u);
   const ICM::Chart_report& c = removed.report.charts[0];
   EXPECT_GT(c.raw_overlapping_border_edges, 0);
@@ -412,7 +414,7 @@ TEST(Surfaces, HorseOverlapIsRemovedByDefaultAndKeptOnRequest)
   EXPECT_GE(c.overlap_cut_edges, 1);
   EXPECT_EQ(c.seam_edges, c.overlap_cut_edges); // a disk: the only seams are the cuts
 
-  ICM::Surface_parameterization_options keep;
+  ICM::Surface_parameterization_options keep = free_border;
   keep.remove_overlaps = false;
   auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:raw_uv", Point_2(NAN, NAN)).first;
   const auto raw = ICM::parameterize(mesh, uv, keep);
@@ -422,6 +424,26 @@ TEST(Surfaces, HorseOverlapIsRemovedByDefaultAndKeptOnRequest)
   const ICM::Distortion_measures raw_measures = ICM::measure_distortion_corner_uv(mesh, uv);
   EXPECT_NEAR(raw_measures.qc_mean, removed.measures.qc_mean, 1e-9);
   EXPECT_NEAR(raw_measures.log_area_distortion, removed.measures.log_area_distortion, 1e-9);
+}
+
+TEST(Surfaces, HorseGetsConesByDefaultAndLessAreaDistortion)
+{
+  // The horse's free-boundary optimum shrinks some areas 230-fold (max |u - u0| = 2.2):
+  // by default it gets cones and its area distortion drops below half the free border's
+  // (0.115 against 0.296 mean log^2 area by the shared evaluator; BFF's is 0.284).
+  if(!icm_test::shared_dir_exists())
+    GTEST_SKIP() << "shared meshes not present";
+  Mesh mesh = read(icm_test::shared_path("horse.obj"));
+  const Result with_cones = run(mesh, "horse");
+  ICM::Surface_parameterization_options free_border;
+  free_border.automatic_cones = false;
+  const Result without = run(mesh, "horse, free border", free_border);
+  ASSERT_EQ(with_cones.report.charts.size(), 1u);
+  const ICM::Chart_report& c = with_cones.report.charts[0];
+  EXPECT_GE(c.cones.size(), 2u);
+  EXPECT_EQ(c.overlapping_border_edges, 0);
+  EXPECT_LT(with_cones.measures.log_area_distortion, 0.5 * without.measures.log_area_distortion);
+  EXPECT_LT(with_cones.measures.qc_mean, 1.05);
 }
 
 } // namespace
