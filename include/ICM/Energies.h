@@ -225,6 +225,8 @@ public:
   double mesh_area(int f) const { return mesh_area_[f]; }
   double mesh_angle(int f, int c) const { return mesh_angle_[f][c]; }
   double mesh_total_area() const { return mesh_total_area_; }
+  /// The developed vertices (when `develops_faces`): the metric laid out in the plane.
+  const std::vector<std::array<double, 2>>& development() const { return z_; }
 
   /// The gradient with respect to u of an energy whose partial derivatives are `partials`,
   /// by the chain rule through the metric: exact, because the angle derivatives are the
@@ -303,48 +305,67 @@ private:
   // --- Faces of the mesh in the development of a metric with its own triangulation -------
 
   /// One vertex placed from face `face` of the triangulation, at `corner`, from the two
-  /// vertices of the face already placed: z_c = z_a + rho R(theta_a) (z_b - z_a) with
-  /// rho = sin theta_b / sin theta_c (law of sines), a the next corner, b the one after.
+  /// vertices of the face already placed, a the next corner and b the one after:
+  /// z_c = z_a + l_ac R(theta_a) (z_b - z_a) / |z_b - z_a|, the metric's length and angle.
   struct Placement
   {
     int face, corner;
   };
 
-  /// Places every vertex by unfolding the triangulation breadth first from a central face
-  /// (an order that depends on the connectivity only, so the development is a smooth
-  /// function of the angles between flips), with the first edge of unit length: the areas
-  /// are normalised, so the scale does not matter, and angles alone determine everything.
+  /// Places every vertex by unfolding the triangulation from its central face, as
+  /// `layout_by_propagation` does: least estimated error first (breadth first through thin
+  /// faces loses every digit on the horse), and every new edge at the metric's length rather
+  /// than at a ratio of lengths times an edge already placed, which would carry the relative
+  /// error of that edge on (camelhead: edges off by 450 times their length). The order
+  /// depends on the lengths only through comparisons, so the development is a smooth
+  /// function of the metric's lengths and angles almost everywhere.
   void measure_developed_faces(const internal::Mesh_index& t)
   {
-    const int nv = t.number_of_vertices(), nt = t.number_of_faces();
+    const int nv = t.number_of_vertices();
     z_.assign(nv, {0.0, 0.0});
     placements_.clear();
-    std::vector<char> placed(nv, 0), reached(nt, 0);
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    std::vector<double> error(nv, HUGE_VAL); // finite once placed
     const int root = central_face(t);
     const std::array<int, 3>& r = t.faces[root];
+    root_edge_ = t.face_edges[root][2];
     z_[r[0]] = {0.0, 0.0};
-    z_[r[1]] = {1.0, 0.0};
-    placed[r[0]] = placed[r[1]] = 1;
-    std::queue<int> queue;
-    queue.push(root);
-    reached[root] = 1;
+    z_[r[1]] = {lengths_[root_edge_], 0.0};
+    // Errors in units of length, so that the order does not change with the global scale.
+    error[r[0]] = error[r[1]] = eps * lengths_[root_edge_];
+    place(t, root, 2);
+    error[r[2]] = error[r[0]];
+
+    const Faces_around_vertices around(t);
+    using Candidate = std::pair<double, std::pair<int, int>>; // (error of the third vertex, (face, corner))
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
+    auto offer_faces_around = [&](int v) {
+      for(int i = around.first[v]; i < around.first[v + 1]; ++i)
+      {
+        const int f = around.faces[i];
+        const std::array<int, 3>& w = t.faces[f];
+        for(int c = 0; c < 3; ++c)
+        {
+          const int a = w[(c + 1) % 3], b = w[(c + 2) % 3];
+          if(error[w[c]] < HUGE_VAL || error[a] == HUGE_VAL || error[b] == HUGE_VAL)
+            continue;
+          const double l_ab = lengths_[t.face_edges[f][c]], l_ac = lengths_[t.face_edges[f][(c + 2) % 3]];
+          queue.push({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {f, c}});
+        }
+      }
+    };
+    for(int v : r)
+      offer_faces_around(v);
     while(!queue.empty())
     {
-      const int f = queue.front();
+      const auto [estimate, where] = queue.top();
       queue.pop();
-      for(int c = 0; c < 3; ++c)
-        if(!placed[t.faces[f][c]])
-        {
-          place(t, f, c);
-          placed[t.faces[f][c]] = 1;
-        }
-      for(int e : t.face_edges[f])
-        for(int g : t.edge_faces[e])
-          if(g >= 0 && !reached[g])
-          {
-            reached[g] = 1;
-            queue.push(g);
-          }
+      const int third = t.faces[where.first][where.second];
+      if(error[third] < HUGE_VAL)
+        continue;
+      place(t, where.first, where.second);
+      error[third] = estimate;
+      offer_faces_around(third);
     }
 
     const int nf = mesh_.number_of_faces();
@@ -369,17 +390,18 @@ private:
   void place(const internal::Mesh_index& t, int f, int c)
   {
     const std::array<int, 3>& v = t.faces[f];
-    const std::array<double, 3>& theta = geometry_[f].angles.angle;
     const int a = (c + 1) % 3, b = (c + 2) % 3;
-    const double rho = std::sin(theta[b]) / std::sin(theta[c]);
-    const internal::Point2 d = internal::rotated(internal::minus(z_[v[b]], z_[v[a]]), theta[a]);
-    z_[v[c]] = {z_[v[a]][0] + rho * d[0], z_[v[a]][1] + rho * d[1]};
+    const internal::Point2 d = internal::minus(z_[v[b]], z_[v[a]]);
+    const double scale = lengths_[t.face_edges[f][b]] / std::hypot(d[0], d[1]);
+    const internal::Point2 w = internal::rotated(d, geometry_[f].angles.angle[a]);
+    z_[v[c]] = {z_[v[a]][0] + scale * w[0], z_[v[a]][1] + scale * w[1]};
     placements_.push_back({f, c});
   }
 
   /// Reverse mode through the development: the partials of the mesh faces' areas and angles
   /// with respect to the placed points, back through every placement to the triangulation's
-  /// angles, and from them to u by the Jacobian weights.
+  /// lengths and angles, and from them to u by the metric's length derivatives and Jacobian
+  /// weights.
   void chain_through_development(const Energy_gradient& partials, Eigen::VectorXd& gradient) const
   {
     const internal::Mesh_index& t = triangulation();
@@ -418,24 +440,40 @@ private:
 
     std::vector<std::array<double, 3>>& theta_bar = angle_partial_;
     theta_bar.assign(t.number_of_faces(), {0.0, 0.0, 0.0});
+    std::vector<double>& length_bar = length_partial_;
+    length_bar.assign(t.number_of_edges(), 0.0);
     for(auto it = placements_.rbegin(); it != placements_.rend(); ++it)
     {
+      // z_c = z_a + l_ac w, w = R(theta_a) n, n = d / |d|, d = z_b - z_a.
       const int f = it->face, c = it->corner, a = (c + 1) % 3, b = (c + 2) % 3;
       const std::array<int, 3>& v = t.faces[f];
-      const std::array<double, 3>& theta = geometry_[f].angles.angle;
+      const double theta = geometry_[f].angles.angle[a];
+      const int ac = t.face_edges[f][b];
       const internal::Point2 Z = zbar[v[c]];
-      const double rho = std::sin(theta[b]) / std::sin(theta[c]);
       const internal::Point2 d = internal::minus(z_[v[b]], z_[v[a]]);
-      const internal::Point2 w = internal::rotated(d, theta[a]); // z_c = z_a + rho w
-      const double rho_bar = internal::dot(Z, w);
-      const internal::Point2 w_bar = {rho * Z[0], rho * Z[1]};
-      const internal::Point2 d_bar = internal::rotated(w_bar, -theta[a]);
-      theta_bar[f][a] += internal::dot(w_bar, {-w[1], w[0]});
-      theta_bar[f][b] += rho_bar * rho * std::cos(theta[b]) / std::sin(theta[b]);
-      theta_bar[f][c] -= rho_bar * rho * std::cos(theta[c]) / std::sin(theta[c]);
+      const double norm = std::hypot(d[0], d[1]);
+      const internal::Point2 n = {d[0] / norm, d[1] / norm};
+      const internal::Point2 w = internal::rotated(n, theta);
+      length_bar[ac] += internal::dot(Z, w);
+      theta_bar[f][a] += lengths_[ac] * internal::dot(Z, {-w[1], w[0]});
+      const internal::Point2 n_bar = internal::rotated({lengths_[ac] * Z[0], lengths_[ac] * Z[1]}, -theta);
+      const double along = internal::dot(n_bar, n);
+      const internal::Point2 d_bar = {(n_bar[0] - along * n[0]) / norm, (n_bar[1] - along * n[1]) / norm};
       add(v[a], Z[0] - d_bar[0], Z[1] - d_bar[1]);
       add(v[b], d_bar[0], d_bar[1]);
     }
+    const std::array<int, 3>& r = t.faces[placements_.front().face];
+    length_bar[root_edge_] += zbar[r[1]][0]; // z_r1 = (l_root, 0)
+
+    const Metric& metric = curvature_->metric();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+      if(length_bar[e] != 0.0)
+      {
+        const int i = t.edges[e][0], j = t.edges[e][1];
+        const std::array<double, 2> d = internal::log_length_derivatives(metric, e, radii_[i], radii_[j]);
+        gradient[i] += length_bar[e] * lengths_[e] * d[0];
+        gradient[j] += length_bar[e] * lengths_[e] * d[1];
+      }
     for(int f = 0; f < t.number_of_faces(); ++f)
       add_angle_chain(t.faces[f], geometry_[f].weight, theta_bar[f], gradient);
   }
@@ -454,11 +492,13 @@ private:
   std::vector<std::array<double, 3>> angle_;  // per mesh face corner
   double area_scale_ = 1;
   std::vector<internal::Point2> z_;           // developed vertices
-  std::vector<Placement> placements_;
+  std::vector<Placement> placements_; // the root's third vertex first
+  int root_edge_ = -1;
   // Scratch of gradient_u.
   mutable std::vector<double> raw_area_partial_;
   mutable std::vector<internal::Point2> z_partial_;
   mutable std::vector<std::array<double, 3>> angle_partial_;
+  mutable std::vector<double> length_partial_;
 };
 
 namespace internal {

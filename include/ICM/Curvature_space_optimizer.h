@@ -1,0 +1,730 @@
+// Step 5 for any energy: the point of the admissible curvature space {k_N = 0,
+// sum_S k = 2 pi chi} (Def. 3.1) where an energy (Energies.h) is least.
+//
+// Two optimizers reach it.
+// - `minimize_energy_on_singular_values` (the default, fast): the admissible space is
+//   parameterized by the values u_S on the singular vertices. Each u_S gives exactly one
+//   admissible metric, the solution of the Dirichlet problem K(u)_N = 0 with u_S fixed, which
+//   Newton solves as `free_boundary_optimum` does. Differentiating K(u)_N = 0 gives
+//   du_N = Delta_NN^{-1} W_NS du_S, so dE/du_S = g_S - Delta_SN Delta_NN^{-1} g_N with
+//   g = grad_u E: one more solve with the factorization Newton holds. L-BFGS on u_S then
+//   needs one or two warm-started Newton steps per iteration, started from the first-order
+//   prediction of u_N (the same harmonic extension). The reduced gradient is the
+//   Dirichlet-to-Neumann map Sigma = Delta_SS - Delta_SN Delta_NN^{-1} Delta_NS applied to
+//   (grad_k E)_S, so it vanishes exactly when the S components of grad_k E are equal:
+//   Theorem 3.2.
+// - `minimize_energy_by_projected_gradient` (the paper's Algorithm 4, the reference): in
+//   curvature space, grad_k E = Delta(u)^{-1} grad_u E projected onto the admissible space
+//   (N components zeroed, the mean over S removed), k <- k - lambda grad_k E with a line
+//   search that keeps E decreasing (Barzilai-Borwein trial steps), u = K^{-1}(k) by Newton
+//   warm-started from the last u. Every step is a full inverse curvature map, so it is slow;
+//   it is kept to validate the fast one.
+//
+// Both return u normalised so that the mean of u_S - u0_S is zero (the global scale is not
+// part of a parameterization and every energy ignores it). Numbers: doc/energies.md.
+
+#ifndef ICM_CURVATURE_SPACE_OPTIMIZER_H
+#define ICM_CURVATURE_SPACE_OPTIMIZER_H
+
+#include <ICM/Curvature_map.h>
+#include <ICM/Dynamic_laplacian.h>
+#include <ICM/Energies.h>
+#include <ICM/Inverse_curvature_map.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace ICM {
+
+/// What L-BFGS on u_S takes as its initial inverse Hessian (times the usual scalar
+/// s.y / y.My).
+enum class Lbfgs_preconditioner
+{
+  /// The Dirichlet-to-Neumann map Sigma (one solve with Newton's factorization per
+  /// iteration). The energies of u and of areas (u-square, area, log area) have a reduced
+  /// Hessian like P^T M P (P the harmonic extension), whose spectrum falls like 1 / frequency
+  /// along the border where Sigma's rises like it: Sigma makes them well conditioned.
+  Dirichlet_to_Neumann,
+  /// The identity: for energies whose reduced Hessian is itself like Sigma (the curvature
+  /// entropy, the angle energy, which are Dirichlet-type energies of u).
+  Identity
+};
+
+/// Options of both optimizers.
+struct Curvature_space_options
+{
+  /// Stop when the reduced gradient max_S |dE/du_S| (the singular-values optimizer) is below
+  /// this times its value at the start, or (the projected gradient) when the S components
+  /// of grad_k E differ by less than this times the spread of grad_k E (Theorem 3.2).
+  double tolerance = 1e-6;
+  int max_iterations = 500;
+  /// Largest change of any u_S (or, for the projected gradient, of any k_S) in one step.
+  double max_step = 0.5;
+  /// Pairs kept by L-BFGS.
+  int memory = 10;
+  Lbfgs_preconditioner preconditioner = Lbfgs_preconditioner::Dirichlet_to_Neumann;
+  /// Trial steps per line search before giving up.
+  int max_line_search_steps = 30;
+  /// Sufficient decrease of the line searches (Armijo).
+  double armijo = 1e-4;
+  /// The Dirichlet (or, for the projected gradient, the inverse curvature map) Newton.
+  Newton_options newton;
+};
+
+/// What an optimizer did.
+struct Curvature_space_report
+{
+  bool converged = false;
+  int iterations = 0;         ///< accepted steps
+  int evaluations = 0;        ///< metrics measured (line search trials included)
+  int newton_iterations = 0;  ///< Newton steps over all solves (each one factorization)
+  int factorizations = 0;     ///< other factorizations (the gradient's solves)
+  double initial_energy = 0, final_energy = 0;  ///< NaN for an energy without a value
+  /// Final stopping figure: the relative reduced gradient, or Theorem 3.2's spread.
+  double final_residual = 0;
+  std::vector<double> energy_history;
+  double seconds = 0;
+  std::string message; ///< empty when converged, else why it stopped
+};
+
+namespace internal {
+
+/// The singular vertices in index order, and what the optimizers check about them.
+inline std::vector<int> singular_list(const std::vector<char>& is_singular)
+{
+  std::vector<int> list;
+  for(int v = 0; v < static_cast<int>(is_singular.size()); ++v)
+    if(is_singular[v])
+      list.push_back(v);
+  return list;
+}
+
+/// Why the optimizers cannot run on this singular set, or an empty string.
+template <class Metric>
+std::string singular_set_problem(const Mesh_index& index, const std::vector<int>& singular)
+{
+  if(singular.empty())
+    return "the singular set is empty";
+  if constexpr(Energy_state<Metric>::develops_faces)
+    for(int v : singular)
+      if(!index.is_boundary_vertex[v])
+        return "interior cone " + std::to_string(v) +
+               ": a metric that flips its own triangulation measures the mesh's faces in its "
+               "development, which needs a cut at cones (use a metric on the mesh's triangulation)";
+  return "";
+}
+
+inline void remove_mean(Eigen::VectorXd& x)
+{
+  if(x.size() > 0)
+    x.array() -= x.mean();
+}
+
+/// The global scale the optimizers return: mean over S of u - u0 is zero.
+inline void normalise_scale(const std::vector<int>& singular, const Eigen::VectorXd& u0, Eigen::VectorXd& u)
+{
+  double mean = 0;
+  for(int v : singular)
+    mean += u[v] - u0[v];
+  u.array() -= mean / singular.size();
+}
+
+/// Limited-memory BFGS: the pairs (s, y) of the last steps and the two-loop recursion.
+class Lbfgs_memory
+{
+public:
+  explicit Lbfgs_memory(int size) : size_(size) {}
+
+  void clear() { pairs_.clear(); }
+  bool empty() const { return pairs_.empty(); }
+
+  /// Keeps the pair when it has positive curvature (else the update would not be positive
+  /// definite).
+  void push(const Eigen::VectorXd& s, const Eigen::VectorXd& y)
+  {
+    const double sy = s.dot(y);
+    if(!(sy > 1e-12 * s.norm() * y.norm()))
+      return;
+    if(static_cast<int>(pairs_.size()) == size_)
+      pairs_.pop_front();
+    pairs_.push_back({s, y, 1.0 / sy});
+  }
+
+  /// -H g, with H0 = gamma M, M applied by `apply_m`, gamma = s.y / y.M y of the last pair.
+  template <class ApplyM>
+  Eigen::VectorXd direction(const Eigen::VectorXd& g, ApplyM apply_m) const
+  {
+    Eigen::VectorXd q = g;
+    std::vector<double> alpha(pairs_.size());
+    for(int i = static_cast<int>(pairs_.size()) - 1; i >= 0; --i)
+    {
+      alpha[i] = pairs_[i].rho * pairs_[i].s.dot(q);
+      q -= alpha[i] * pairs_[i].y;
+    }
+    Eigen::VectorXd r = apply_m(q);
+    if(!pairs_.empty())
+    {
+      const Pair& last = pairs_.back();
+      const double yMy = last.y.dot(apply_m(last.y));
+      if(yMy > 0)
+        r *= last.s.dot(last.y) / yMy;
+    }
+    for(std::size_t i = 0; i < pairs_.size(); ++i)
+    {
+      const double beta = pairs_[i].rho * pairs_[i].y.dot(r);
+      r += (alpha[i] - beta) * pairs_[i].s;
+    }
+    return -r;
+  }
+
+private:
+  struct Pair
+  {
+    Eigen::VectorXd s, y;
+    double rho;
+  };
+  int size_;
+  std::deque<Pair> pairs_;
+};
+
+/// Sufficient decrease along a line phi(alpha) with phi'(0) < 0. With values: Armijo, or,
+/// once the change of E is lost in its rounding, its form for a quadratic model,
+/// phi'(alpha) <= (1 - 2 c) |phi'(0)| (Hager and Zhang's approximate Wolfe condition).
+/// Without values (an energy convex in k) only the derivative test.
+inline bool sufficient_decrease(bool has_value, double phi0, double dphi0, double phi, double dphi,
+                                double alpha, double c)
+{
+  const bool derivative_test = dphi <= (1.0 - 2.0 * c) * -dphi0;
+  if(!has_value)
+    return derivative_test;
+  if(!std::isfinite(phi))
+    return false;
+  if(phi <= phi0 + c * alpha * dphi0)
+    return true;
+  return derivative_test && phi <= phi0 + 1e-12 * std::abs(phi0);
+}
+
+/// The next trial of a backtracking line search: the minimum of the cubic through phi(0),
+/// phi'(0), phi(alpha), phi'(alpha) (or of the secant of phi' without values), kept in
+/// [0.1, 0.5] alpha.
+inline double backtrack(bool has_value, double phi0, double dphi0, double phi, double dphi, double alpha)
+{
+  double next = 0.5 * alpha;
+  if(has_value && std::isfinite(phi) && std::isfinite(dphi))
+  {
+    const double d1 = dphi0 + dphi - 3.0 * (phi0 - phi) / (0.0 - alpha);
+    const double root = d1 * d1 - dphi0 * dphi;
+    if(root >= 0)
+    {
+      const double d2 = std::sqrt(root);
+      next = alpha - alpha * (dphi + d2 - d1) / (dphi - dphi0 + 2.0 * d2);
+    }
+  }
+  else if(std::isfinite(dphi) && dphi > dphi0)
+    next = alpha * -dphi0 / (dphi - dphi0);
+  if(!std::isfinite(next))
+    next = 0.5 * alpha;
+  return std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+}
+
+/// Solves Delta_FF x = b with the Laplacian as assembled now: the last factorization
+/// preconditions an iterative refinement when it is of a nearby metric, else the matrix is
+/// factorized. Returns false when it cannot be factorized.
+template <class SparseSolver>
+bool solve_with_current_weights(Dynamic_laplacian<SparseSolver>& laplacian, const Eigen::VectorXd& b,
+                                Eigen::VectorXd& x, int& factorizations)
+{
+  if(laplacian.has_factorization() && laplacian.solve_refined(b, x))
+    return true;
+  ++factorizations;
+  if(!laplacian.factorize())
+    return false;
+  x = laplacian.solve(b);
+  return x.allFinite();
+}
+
+/// The reduced problem of the singular-values optimizer: E as a function of u_S through
+/// the Dirichlet problem, its gradient, the harmonic extension and the Dirichlet-to-Neumann
+/// map, all with the Dirichlet Newton's factorization.
+template <class SparseSolver, class Metric, class Energy>
+class Singular_value_problem
+{
+public:
+  Singular_value_problem(Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const Mesh_index& index,
+                         const Energy& energy, const std::vector<int>& singular,
+                         Curvature_space_report& report)
+    : dirichlet_(dirichlet), index_(index), state_(index), energy_(energy), singular_(singular),
+      report_(report)
+  {}
+
+  /// u_N with K(u)_N = 0 for the u_S of `u`, from the u_N given.
+  bool solve_interior(Eigen::VectorXd& u, const Newton_options& options)
+  {
+    const Newton_report newton = dirichlet_.solve(Eigen::VectorXd::Zero(u.size()), u, options);
+    report_.newton_iterations += newton.iterations;
+    message_ = newton.message;
+    return newton.converged;
+  }
+
+  /// Measures E, grad_u E and the reduced gradient at the admissible u.
+  bool evaluate(const Eigen::VectorXd& u)
+  {
+    ++report_.evaluations;
+    if(!state_.update(dirichlet_.curvature_map(), u))
+    {
+      message_ = std::to_string(state_.invalid_faces()) + " faces are not triangles";
+      return false;
+    }
+    value_ = energy_value(energy_, state_);
+    energy_gradient(energy_, state_, gradient_, partials_);
+    Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
+    laplacian.assemble(state_.weights());
+    // dE/du_S = g_S + W_SN Delta_NN^{-1} g_N.
+    Eigen::VectorXd gN(laplacian.size()), y;
+    for(int i = 0; i < laplacian.size(); ++i)
+      gN[i] = gradient_[laplacian.vertex(i)];
+    if(!solve_with_current_weights(laplacian, gN, y, report_.factorizations))
+    {
+      message_ = "the Laplacian of the interior could not be factorized";
+      return false;
+    }
+    Eigen::VectorXd full = gradient_;
+    add_coupling(laplacian, y, full);
+    reduced_.resize(singular_.size());
+    for(std::size_t s = 0; s < singular_.size(); ++s)
+      reduced_[s] = full[singular_[s]];
+    remove_mean(reduced_);
+    return reduced_.allFinite() && gradient_.allFinite();
+  }
+
+  double value() const { return value_; }
+  const Eigen::VectorXd& gradient_u() const { return gradient_; }
+  const Eigen::VectorXd& reduced_gradient() const { return reduced_; }
+  const std::string& message() const { return message_; }
+
+  /// du_N of the admissible metrics along du_S = d: Delta_NN^{-1} W_NS d (the harmonic
+  /// extension of d), per vertex, zero on S.
+  Eigen::VectorXd harmonic_extension(const Eigen::VectorXd& d)
+  {
+    Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
+    Eigen::VectorXd on_s = Eigen::VectorXd::Zero(index_.number_of_vertices());
+    for(std::size_t s = 0; s < singular_.size(); ++s)
+      on_s[singular_[s]] = d[s];
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(laplacian.size());
+    const Mesh_index& t = state_.triangulation();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+    {
+      const int i = t.edges[e][0], j = t.edges[e][1];
+      const int fi = laplacian.free_index(i), fj = laplacian.free_index(j);
+      if(fi >= 0 && fj < 0)
+        b[fi] += state_.weights()[e] * on_s[j];
+      else if(fj >= 0 && fi < 0)
+        b[fj] += state_.weights()[e] * on_s[i];
+    }
+    Eigen::VectorXd x, result = Eigen::VectorXd::Zero(index_.number_of_vertices());
+    if(!solve_with_current_weights(laplacian, b, x, report_.factorizations))
+      return result;
+    for(int i = 0; i < laplacian.size(); ++i)
+      result[laplacian.vertex(i)] = x[i];
+    return result;
+  }
+
+  /// Sigma v = (Delta v~)_S with v~ = v on S and its harmonic extension on N.
+  Eigen::VectorXd dirichlet_to_neumann(const Eigen::VectorXd& v)
+  {
+    Eigen::VectorXd extended = harmonic_extension(v);
+    for(std::size_t s = 0; s < singular_.size(); ++s)
+      extended[singular_[s]] = v[s];
+    Eigen::VectorXd laplacian_of = Eigen::VectorXd::Zero(extended.size());
+    const Mesh_index& t = state_.triangulation();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+    {
+      const int i = t.edges[e][0], j = t.edges[e][1];
+      const double flow = state_.weights()[e] * (extended[i] - extended[j]);
+      laplacian_of[i] += flow;
+      laplacian_of[j] -= flow;
+    }
+    Eigen::VectorXd result(singular_.size());
+    for(std::size_t s = 0; s < singular_.size(); ++s)
+      result[s] = laplacian_of[singular_[s]];
+    return result;
+  }
+
+private:
+  /// full_S += W_SN y for y given per free unknown.
+  void add_coupling(const Dynamic_laplacian<SparseSolver>& laplacian, const Eigen::VectorXd& y,
+                    Eigen::VectorXd& full) const
+  {
+    const Mesh_index& t = state_.triangulation();
+    for(int e = 0; e < t.number_of_edges(); ++e)
+    {
+      const int i = t.edges[e][0], j = t.edges[e][1];
+      const int fi = laplacian.free_index(i), fj = laplacian.free_index(j);
+      if(fi < 0 && fj >= 0)
+        full[i] += state_.weights()[e] * y[fj];
+      else if(fj < 0 && fi >= 0)
+        full[j] += state_.weights()[e] * y[fi];
+    }
+  }
+
+  Inverse_curvature_map<SparseSolver, Metric>& dirichlet_;
+  const Mesh_index& index_;
+  Energy_state<Metric> state_;
+  const Energy& energy_;
+  const std::vector<int>& singular_;
+  Curvature_space_report& report_;
+  Energy_gradient partials_;
+  Eigen::VectorXd gradient_, reduced_;
+  double value_ = 0;
+  std::string message_;
+};
+
+inline double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace internal
+
+/// The minimum of `energy` over the admissible metrics with singular set S = the fixed
+/// vertices of `dirichlet` (built with F = N, as for `free_boundary_optimum`), by L-BFGS on
+/// u_S. `u` is the start (its u_S; u_N is solved for, warm-started from the u_N given) and
+/// receives the optimum, normalised so that mean_S(u - u0) = 0. Starting from the entropy
+/// optimum (`free_boundary_optimum`) is natural: every energy is measured against it.
+template <class SparseSolver, class Metric, class Energy>
+Curvature_space_report minimize_energy_on_singular_values(
+  Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const internal::Mesh_index& index,
+  const Metric& metric, const Energy& energy, Eigen::VectorXd& u,
+  const Curvature_space_options& options = Curvature_space_options())
+{
+  const auto start = std::chrono::steady_clock::now();
+  Curvature_space_report report;
+  constexpr bool has_value = has_energy_value<Energy, Metric>;
+  const int nv = index.number_of_vertices();
+  std::vector<char> is_singular(nv, 0);
+  {
+    Dynamic_laplacian<SparseSolver>& laplacian = dirichlet.laplacian();
+    for(int v = 0; v < nv; ++v)
+      is_singular[v] = laplacian.free_index(v) < 0;
+  }
+  const std::vector<int> singular = internal::singular_list(is_singular);
+  report.message = internal::singular_set_problem<Metric>(index, singular);
+  if(!report.message.empty())
+    return report;
+  if(u.size() != nv)
+    u = metric.u0;
+
+  internal::Singular_value_problem<SparseSolver, Metric, Energy> problem(dirichlet, index, energy, singular, report);
+  auto fail = [&](const std::string& why) {
+    report.message = why;
+    report.final_energy = problem.value();
+    report.seconds = internal::seconds_since(start);
+    return report;
+  };
+  if(!problem.solve_interior(u, options.newton))
+    return fail("the Dirichlet problem at the start: " + problem.message());
+  if(!problem.evaluate(u))
+    return fail("at the start: " + problem.message());
+  report.initial_energy = problem.value();
+  report.energy_history.push_back(problem.value());
+
+  auto apply_m = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    Eigen::VectorXd x = options.preconditioner == Lbfgs_preconditioner::Dirichlet_to_Neumann
+                          ? problem.dirichlet_to_neumann(v)
+                          : v;
+    internal::remove_mean(x);
+    return x;
+  };
+
+  internal::Lbfgs_memory memory(options.memory);
+  Eigen::VectorXd u_trial;
+  const double initial_gradient = problem.reduced_gradient().cwiseAbs().maxCoeff();
+  for(;;)
+  {
+    const Eigen::VectorXd r = problem.reduced_gradient();
+    const double largest = r.cwiseAbs().maxCoeff();
+    report.final_residual = initial_gradient > 0 ? largest / initial_gradient : 0.0;
+    // Converged, or at the start already optimal to rounding.
+    if(report.final_residual <= options.tolerance ||
+       largest <= 1e-13 * problem.gradient_u().cwiseAbs().maxCoeff())
+      break;
+    if(report.iterations == options.max_iterations)
+      return fail("not converged in " + std::to_string(options.max_iterations) +
+                  " iterations (relative reduced gradient " + std::to_string(report.final_residual) + ")");
+
+    Eigen::VectorXd d = memory.direction(r, apply_m);
+    internal::remove_mean(d);
+    if(!(d.dot(r) < 0))
+    {
+      memory.clear();
+      d = -apply_m(r);
+    }
+    const double dphi0 = d.dot(r);
+    const double phi0 = problem.value();
+    const Eigen::VectorXd extension = problem.harmonic_extension(d);
+    // The first step has no curvature information to scale it: it moves u_S by a tenth.
+    double alpha = memory.empty() ? 0.1 / d.cwiseAbs().maxCoeff() : 1.0;
+    alpha = std::min(alpha, options.max_step / d.cwiseAbs().maxCoeff());
+
+    bool accepted = false;
+    for(int trial = 0; trial < options.max_line_search_steps; ++trial)
+    {
+      u_trial = u + alpha * extension;
+      for(std::size_t s = 0; s < singular.size(); ++s)
+        u_trial[singular[s]] = u[singular[s]] + alpha * d[s];
+      if(!problem.solve_interior(u_trial, options.newton) || !problem.evaluate(u_trial))
+      {
+        alpha *= 0.25; // beyond the metric's valid region, or Newton could not get there
+        continue;
+      }
+      const double phi = problem.value(), dphi = problem.reduced_gradient().dot(d);
+      if(internal::sufficient_decrease(has_value, phi0, dphi0, phi, dphi, alpha, options.armijo))
+      {
+        accepted = true;
+        break;
+      }
+      alpha = internal::backtrack(has_value, phi0, dphi0, phi, dphi, alpha);
+    }
+    if(!accepted)
+    {
+      // Restore the last accepted metric in the solver's state before reporting.
+      problem.solve_interior(u, options.newton);
+      problem.evaluate(u);
+      return fail("the line search found no decrease (relative reduced gradient " +
+                  std::to_string(report.final_residual) + ")");
+    }
+    memory.push(alpha * d, problem.reduced_gradient() - r);
+    u.swap(u_trial);
+    ++report.iterations;
+    report.energy_history.push_back(problem.value());
+  }
+  internal::normalise_scale(singular, metric.u0, u);
+  report.final_energy = problem.value();
+  report.converged = true;
+  report.seconds = internal::seconds_since(start);
+  return report;
+}
+
+/// Convenience form: builds the Dirichlet solver for `is_singular`, starts from the entropy
+/// optimum (u_S = u0_S) when `u` is empty.
+template <class SparseSolver = Default_sparse_solver, class Metric, class Energy>
+Curvature_space_report minimize_energy_on_singular_values(
+  const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_singular,
+  const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options())
+{
+  std::vector<char> is_free(is_singular.size());
+  for(std::size_t v = 0; v < is_singular.size(); ++v)
+    is_free[v] = !is_singular[v];
+  Inverse_curvature_map<SparseSolver, Metric> dirichlet(index, metric, is_free);
+  return minimize_energy_on_singular_values(dirichlet, index, metric, energy, u, options);
+}
+
+/// grad_k E at u: the energy's own `gradient_k`, or Delta(u)^{-1} grad_u E with one vertex
+/// pinned (the energies ignore the global scale, so grad_u E sums to zero and the pinned
+/// equation holds). Defined up to a constant; returns false when Delta cannot be factorized.
+template <class SparseSolver = Default_sparse_solver, class Metric, class Energy>
+bool curvature_gradient(const internal::Mesh_index& index, const Metric& metric, const Energy& energy,
+                        const Eigen::VectorXd& u, Eigen::VectorXd& h)
+{
+  Curvature_map<Metric> curvature(index, metric);
+  Energy_state<Metric> state(index);
+  state.update(curvature, u);
+  if constexpr(has_curvature_gradient<Energy, Metric>)
+  {
+    energy.gradient_k(state, h);
+    return true;
+  }
+  else
+  {
+    const Eigen::VectorXd g = energy_gradient(energy, state);
+    std::vector<char> is_free(index.number_of_vertices(), 1);
+    is_free[0] = 0;
+    Dynamic_laplacian<SparseSolver> laplacian(curvature.mesh_index(), is_free);
+    laplacian.assemble(state.weights());
+    if(!laplacian.factorize())
+      return false;
+    Eigen::VectorXd b(laplacian.size());
+    for(int i = 0; i < laplacian.size(); ++i)
+      b[i] = g[laplacian.vertex(i)];
+    const Eigen::VectorXd x = laplacian.solve(b);
+    h = Eigen::VectorXd::Zero(index.number_of_vertices());
+    for(int i = 0; i < laplacian.size(); ++i)
+      h[laplacian.vertex(i)] = x[i];
+    return h.allFinite();
+  }
+}
+
+/// Theorem 3.2's figure at an optimum: the spread of the S components of grad_k E relative
+/// to the spread of all of them (zero at an interior optimum).
+inline double theorem_3_2_residual(const Eigen::VectorXd& h, const std::vector<char>& is_singular)
+{
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for(int v = 0; v < h.size(); ++v)
+    if(is_singular[v])
+    {
+      lo = std::min(lo, h[v]);
+      hi = std::max(hi, h[v]);
+    }
+  const double spread = h.maxCoeff() - h.minCoeff();
+  return spread > 0 ? (hi - lo) / spread : 0.0;
+}
+
+/// The paper's Algorithm 4: projected gradient in curvature space for the singular set
+/// `is_singular`, from the admissible curvature nearest K(u) (k_N = 0, the Gauss-Bonnet
+/// defect spread over S); `u` (u0 when empty) receives the optimum, normalised so that
+/// mean_S(u - u0) = 0. Stops when Theorem 3.2's residual is below `options.tolerance`.
+template <class SparseSolver = Default_sparse_solver, class Metric, class Energy>
+Curvature_space_report minimize_energy_by_projected_gradient(
+  const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_singular,
+  const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options())
+{
+  const auto start = std::chrono::steady_clock::now();
+  Curvature_space_report report;
+  constexpr bool has_value = has_energy_value<Energy, Metric>;
+  const int nv = index.number_of_vertices();
+  const std::vector<int> singular = internal::singular_list(is_singular);
+  report.message = internal::singular_set_problem<Metric>(index, singular);
+  if(!report.message.empty())
+    return report;
+  double value = 0;
+  auto fail = [&](const std::string& why) {
+    report.message = why;
+    report.final_energy = value;
+    report.seconds = internal::seconds_since(start);
+    return report;
+  };
+  if(u.size() != nv)
+    u = metric.u0;
+
+  // Algorithm 1's solver: every vertex free but one (the constant is Delta's kernel).
+  std::vector<char> is_free(nv, 1);
+  is_free[singular.front()] = 0;
+  Inverse_curvature_map<SparseSolver, Metric> icm(index, metric, is_free);
+  Curvature_map<Metric>& curvature = icm.curvature_map();
+  Energy_state<Metric> state(index);
+  Energy_gradient partials;
+  Eigen::VectorXd g;
+
+  // The admissible curvature nearest K(u).
+  Eigen::VectorXd k;
+  curvature.evaluate(u, k);
+  double defect = 2.0 * M_PI * index.euler_characteristic();
+  for(int v : singular)
+    defect -= k[v];
+  for(int v = 0; v < nv; ++v)
+    if(!is_singular[v])
+      k[v] = 0;
+  for(int v : singular)
+    k[v] += defect / singular.size();
+
+  // u = K^{-1}(k), then E and the projected grad_k E there.
+  auto measure = [&](const Eigen::VectorXd& target, Eigen::VectorXd& x, double& value, Eigen::VectorXd& h) {
+    const Newton_report newton = icm.solve(target, x, options.newton);
+    report.newton_iterations += newton.iterations;
+    if(!newton.converged)
+      return false;
+    ++report.evaluations;
+    if(!state.update(curvature, x))
+      return false;
+    value = energy_value(energy, state);
+    if constexpr(has_curvature_gradient<Energy, Metric>)
+      energy.gradient_k(state, h);
+    else
+    {
+      energy_gradient(energy, state, g, partials);
+      Dynamic_laplacian<SparseSolver>& laplacian = icm.laplacian();
+      laplacian.assemble(state.weights());
+      Eigen::VectorXd b(laplacian.size()), y;
+      for(int i = 0; i < laplacian.size(); ++i)
+        b[i] = g[laplacian.vertex(i)];
+      if(!internal::solve_with_current_weights(laplacian, b, y, report.factorizations))
+        return false;
+      h = Eigen::VectorXd::Zero(nv);
+      for(int i = 0; i < laplacian.size(); ++i)
+        h[laplacian.vertex(i)] = y[i];
+    }
+    return h.allFinite();
+  };
+  auto projected = [&](const Eigen::VectorXd& h) {
+    Eigen::VectorXd p(singular.size());
+    for(std::size_t s = 0; s < singular.size(); ++s)
+      p[s] = h[singular[s]];
+    internal::remove_mean(p);
+    return p;
+  };
+
+  Eigen::VectorXd h;
+  if(!measure(k, u, value, h))
+    return fail("the start could not be reached: u = K^{-1}(k) failed");
+  report.initial_energy = value;
+  report.energy_history.push_back(value);
+  Eigen::VectorXd p = projected(h);
+  double lambda = options.max_step / std::max(p.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
+  lambda = std::min(lambda, 0.1 / std::max(p.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min()));
+
+  Eigen::VectorXd k_trial, u_trial, h_trial;
+  for(;;)
+  {
+    report.final_residual = theorem_3_2_residual(h, is_singular);
+    if(report.final_residual <= options.tolerance)
+      break;
+    if(report.iterations == options.max_iterations)
+      return fail("not converged in " + std::to_string(options.max_iterations) +
+                  " iterations (Theorem 3.2 residual " + std::to_string(report.final_residual) + ")");
+    const double dphi0 = -p.squaredNorm();
+    lambda = std::min(lambda, options.max_step / p.cwiseAbs().maxCoeff());
+    bool accepted = false;
+    double value_trial = 0;
+    for(int trial = 0; trial < options.max_line_search_steps; ++trial)
+    {
+      k_trial = k;
+      for(std::size_t s = 0; s < singular.size(); ++s)
+        k_trial[singular[s]] -= lambda * p[s];
+      u_trial = u;
+      if(!measure(k_trial, u_trial, value_trial, h_trial))
+      {
+        lambda *= 0.25;
+        continue;
+      }
+      const double dphi = -h_trial.dot(Eigen::VectorXd(k - k_trial)) / lambda;
+      if(internal::sufficient_decrease(has_value, value, dphi0, value_trial, dphi, lambda, options.armijo))
+      {
+        accepted = true;
+        break;
+      }
+      lambda = internal::backtrack(has_value, value, dphi0, value_trial, dphi, lambda);
+    }
+    if(!accepted)
+      return fail("the line search found no decrease (Theorem 3.2 residual " +
+                  std::to_string(report.final_residual) + ")");
+    // Barzilai-Borwein: the next trial step from the change of the projected gradient.
+    const Eigen::VectorXd p_trial = projected(h_trial);
+    const Eigen::VectorXd step = -lambda * p, change = p_trial - p;
+    const double sy = step.dot(change);
+    lambda = sy > 0 ? step.squaredNorm() / sy : 2.0 * lambda;
+    k.swap(k_trial);
+    u.swap(u_trial);
+    h.swap(h_trial);
+    p = p_trial;
+    value = value_trial;
+    ++report.iterations;
+    report.energy_history.push_back(value);
+  }
+  internal::normalise_scale(singular, metric.u0, u);
+  report.final_energy = value;
+  report.converged = true;
+  report.seconds = internal::seconds_since(start);
+  return report;
+}
+
+} // namespace ICM
+
+#endif // ICM_CURVATURE_SPACE_OPTIMIZER_H
