@@ -55,7 +55,13 @@ enum class Lbfgs_preconditioner
   Dirichlet_to_Neumann,
   /// The identity: for energies whose reduced Hessian is itself like Sigma (the curvature
   /// entropy, the angle energy, which are Dirichlet-type energies of u).
-  Identity
+  Identity,
+  /// (P^T M P)^{-1}, P the harmonic extension and M the energy's `hessian_diagonal`, by one
+  /// factorization of Delta_N. M^{-1} Delta_.N at the start (see doc/energies.md). Falls back
+  /// to Dirichlet_to_Neumann for an energy without `hessian_diagonal`.
+  Mass,
+  /// Mass for energies with `hessian_diagonal`, else Identity.
+  Automatic
 };
 
 /// Options of both optimizers.
@@ -65,12 +71,18 @@ struct Curvature_space_options
   /// this times its value at the start, or (the projected gradient) when the S components
   /// of grad_k E differ by less than this times the spread of grad_k E (Theorem 3.2).
   double tolerance = 1e-6;
+  /// Also stop (the singular-values optimizer, for an energy with a value) once E fell by
+  /// less than this, relative, over the last `stall_window` steps: far down a flat valley
+  /// the gradient shrinks slowly while E no longer changes in the digits that matter.
+  /// 0 turns this off.
+  double energy_tolerance = 1e-5;
+  int stall_window = 10;
   int max_iterations = 500;
   /// Largest change of any u_S (or, for the projected gradient, of any k_S) in one step.
-  double max_step = 0.5;
+  double max_step = 5.0;
   /// Pairs kept by L-BFGS.
   int memory = 10;
-  Lbfgs_preconditioner preconditioner = Lbfgs_preconditioner::Dirichlet_to_Neumann;
+  Lbfgs_preconditioner preconditioner = Lbfgs_preconditioner::Automatic;
   /// Trial steps per line search before giving up.
   int max_line_search_steps = 30;
   /// Sufficient decrease of the line searches (Armijo).
@@ -251,6 +263,71 @@ bool solve_with_current_weights(Dynamic_laplacian<SparseSolver>& laplacian, cons
   return x.allFinite();
 }
 
+/// The preconditioner (P^T M P)^{-1} of the reduced problem: for the energies of u and of
+/// areas, whose Hessian in u is close to a lumped mass M, this is the reduced Hessian up to
+/// the shape terms. x = (P^T M P)^{-1} r minimises (1/2) h^T M h - r . h_S over h with
+/// Delta_N. h = 0; its Lagrange multiplier solves B lambda = Delta_N. M^{-1} R with
+/// B = Delta_N. M^{-1} Delta_.N (R = r on S), and x = M_S^{-1} (r - Delta_SN lambda).
+class Mass_preconditioner
+{
+public:
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+  /// Factorizes B for the triangulation `t` with Jacobian weights `w`, masses `m` and
+  /// singular set `is_singular`. Returns false when B cannot be factorized.
+  bool build(const Mesh_index& t, const std::vector<double>& w, const Eigen::VectorXd& m,
+             const std::vector<char>& is_singular)
+  {
+    const int nv = t.number_of_vertices();
+    free_of_.assign(nv, -1);
+    int n = 0;
+    for(int v = 0; v < nv; ++v)
+      if(!is_singular[v])
+        free_of_[v] = n++;
+    // Delta_N. as an n x nv matrix, from the edges.
+    std::vector<Eigen::Triplet<double, int>> entries;
+    entries.reserve(4 * t.number_of_edges());
+    for(int e = 0; e < t.number_of_edges(); ++e)
+    {
+      const int i = t.edges[e][0], j = t.edges[e][1];
+      if(i == j)
+        continue;
+      for(const auto& [a, b] : {std::make_pair(i, j), std::make_pair(j, i)})
+        if(free_of_[a] >= 0)
+        {
+          entries.emplace_back(free_of_[a], a, w[e]);
+          entries.emplace_back(free_of_[a], b, -w[e]);
+        }
+    }
+    rows_.resize(n, nv);
+    rows_.setFromTriplets(entries.begin(), entries.end());
+    inverse_mass_ = m.cwiseInverse();
+    const Matrix b = rows_ * inverse_mass_.asDiagonal() * Matrix(rows_.transpose());
+    solver_.compute(b);
+    return solver_.info() == Eigen::Success && inverse_mass_.allFinite();
+  }
+
+  /// x for r given per singular vertex, in the order of `singular`.
+  Eigen::VectorXd apply(const Eigen::VectorXd& r, const std::vector<int>& singular) const
+  {
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(inverse_mass_.size());
+    for(std::size_t s = 0; s < singular.size(); ++s)
+      R[singular[s]] = r[s];
+    const Eigen::VectorXd lambda = solver_.solve(rows_ * inverse_mass_.cwiseProduct(R));
+    const Eigen::VectorXd coupling = rows_.transpose() * lambda;
+    Eigen::VectorXd x(singular.size());
+    for(std::size_t s = 0; s < singular.size(); ++s)
+      x[s] = inverse_mass_[singular[s]] * (r[s] - coupling[singular[s]]);
+    return x;
+  }
+
+private:
+  std::vector<int> free_of_;
+  Matrix rows_;
+  Eigen::VectorXd inverse_mass_;
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver_;
+};
+
 /// The reduced problem of the singular-values optimizer: E as a function of u_S through
 /// the Dirichlet problem, its gradient, the harmonic extension and the Dirichlet-to-Neumann
 /// map, all with the Dirichlet Newton's factorization.
@@ -265,24 +342,46 @@ public:
       report_(report)
   {}
 
-  /// u_N with K(u)_N = 0 for the u_S of `u`, from the u_N given.
+  /// Moves u_N until K(u)_N = 0 for the u_S of `u`, from the u_N given, and leaves the
+  /// state measured at the result. Started from the harmonic extension the residual is of
+  /// second order in the step, so a few chord steps with the factorization at hand (an
+  /// iterative refinement against the current Laplacian) reach the tolerance without a new
+  /// factorization; Newton with its line search takes over when they do not.
   bool solve_interior(Eigen::VectorXd& u, const Newton_options& options)
   {
+    double last = HUGE_VAL;
+    for(int step = 0; step <= max_chord_steps; ++step)
+    {
+      if(!state_.update(dirichlet_.curvature_map(), u))
+        break;
+      Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
+      Eigen::VectorXd residual(laplacian.size());
+      for(int i = 0; i < laplacian.size(); ++i)
+        residual[i] = -state_.curvature()[laplacian.vertex(i)];
+      const double largest = residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0;
+      if(largest <= options.tolerance)
+        return true;
+      if(step == max_chord_steps || !(largest < 0.5 * last))
+        break;
+      last = largest;
+      laplacian.assemble(state_.weights());
+      Eigen::VectorXd du;
+      if(!solve_with_current_weights(laplacian, residual, du, report_.factorizations))
+        break;
+      for(int i = 0; i < laplacian.size(); ++i)
+        u[laplacian.vertex(i)] += du[i];
+      ++report_.newton_iterations;
+    }
     const Newton_report newton = dirichlet_.solve(Eigen::VectorXd::Zero(u.size()), u, options);
     report_.newton_iterations += newton.iterations;
     message_ = newton.message;
-    return newton.converged;
+    return newton.converged && state_.update(dirichlet_.curvature_map(), u);
   }
 
-  /// Measures E, grad_u E and the reduced gradient at the admissible u.
-  bool evaluate(const Eigen::VectorXd& u)
+  /// Measures E, grad_u E and the reduced gradient at the metric `solve_interior` reached.
+  bool evaluate()
   {
     ++report_.evaluations;
-    if(!state_.update(dirichlet_.curvature_map(), u))
-    {
-      message_ = std::to_string(state_.invalid_faces()) + " faces are not triangles";
-      return false;
-    }
     value_ = energy_value(energy_, state_);
     energy_gradient(energy_, state_, gradient_, partials_);
     Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
@@ -304,6 +403,19 @@ public:
     remove_mean(reduced_);
     return reduced_.allFinite() && gradient_.allFinite();
   }
+
+  /// The mass preconditioner at the metric of the last `evaluate`.
+  bool build_mass_preconditioner(const std::vector<char>& is_singular)
+  {
+    Eigen::VectorXd m;
+    if constexpr(has_hessian_diagonal<Energy, Metric>)
+      energy_.hessian_diagonal(state_, m);
+    else
+      m = Eigen::VectorXd::Ones(index_.number_of_vertices());
+    ++report_.factorizations;
+    return mass_.build(state_.triangulation(), state_.weights(), m, is_singular);
+  }
+  Eigen::VectorXd apply_mass_preconditioner(const Eigen::VectorXd& r) const { return mass_.apply(r, singular_); }
 
   double value() const { return value_; }
   const Eigen::VectorXd& gradient_u() const { return gradient_; }
@@ -381,7 +493,9 @@ private:
   const Energy& energy_;
   const std::vector<int>& singular_;
   Curvature_space_report& report_;
+  static constexpr int max_chord_steps = 6;
   Energy_gradient partials_;
+  Mass_preconditioner mass_;
   Eigen::VectorXd gradient_, reduced_;
   double value_ = 0;
   std::string message_;
@@ -431,15 +545,21 @@ Curvature_space_report minimize_energy_on_singular_values(
   };
   if(!problem.solve_interior(u, options.newton))
     return fail("the Dirichlet problem at the start: " + problem.message());
-  if(!problem.evaluate(u))
+  if(!problem.evaluate())
     return fail("at the start: " + problem.message());
   report.initial_energy = problem.value();
   report.energy_history.push_back(problem.value());
 
+  Lbfgs_preconditioner preconditioner = options.preconditioner;
+  if(preconditioner == Lbfgs_preconditioner::Automatic)
+    preconditioner = has_hessian_diagonal<Energy, Metric> ? Lbfgs_preconditioner::Mass : Lbfgs_preconditioner::Identity;
+  if(preconditioner == Lbfgs_preconditioner::Mass &&
+     (!has_hessian_diagonal<Energy, Metric> || !problem.build_mass_preconditioner(is_singular)))
+    preconditioner = Lbfgs_preconditioner::Dirichlet_to_Neumann;
   auto apply_m = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-    Eigen::VectorXd x = options.preconditioner == Lbfgs_preconditioner::Dirichlet_to_Neumann
-                          ? problem.dirichlet_to_neumann(v)
-                          : v;
+    Eigen::VectorXd x = preconditioner == Lbfgs_preconditioner::Dirichlet_to_Neumann ? problem.dirichlet_to_neumann(v)
+                        : preconditioner == Lbfgs_preconditioner::Mass                ? problem.apply_mass_preconditioner(v)
+                                                                                      : v;
     internal::remove_mean(x);
     return x;
   };
@@ -452,9 +572,14 @@ Curvature_space_report minimize_energy_on_singular_values(
     const Eigen::VectorXd r = problem.reduced_gradient();
     const double largest = r.cwiseAbs().maxCoeff();
     report.final_residual = initial_gradient > 0 ? largest / initial_gradient : 0.0;
-    // Converged, or at the start already optimal to rounding.
+    // Converged, or at the start already optimal to rounding, or no longer decreasing.
     if(report.final_residual <= options.tolerance ||
        largest <= 1e-13 * problem.gradient_u().cwiseAbs().maxCoeff())
+      break;
+    const std::vector<double>& history = report.energy_history;
+    if(has_value && options.energy_tolerance > 0 && report.iterations >= options.stall_window &&
+       history[history.size() - 1 - options.stall_window] - history.back() <=
+         options.energy_tolerance * std::abs(history.back()))
       break;
     if(report.iterations == options.max_iterations)
       return fail("not converged in " + std::to_string(options.max_iterations) +
@@ -480,7 +605,7 @@ Curvature_space_report minimize_energy_on_singular_values(
       u_trial = u + alpha * extension;
       for(std::size_t s = 0; s < singular.size(); ++s)
         u_trial[singular[s]] = u[singular[s]] + alpha * d[s];
-      if(!problem.solve_interior(u_trial, options.newton) || !problem.evaluate(u_trial))
+      if(!problem.solve_interior(u_trial, options.newton) || !problem.evaluate())
       {
         alpha *= 0.25; // beyond the metric's valid region, or Newton could not get there
         continue;
@@ -497,7 +622,7 @@ Curvature_space_report minimize_energy_on_singular_values(
     {
       // Restore the last accepted metric in the solver's state before reporting.
       problem.solve_interior(u, options.newton);
-      problem.evaluate(u);
+      problem.evaluate();
       return fail("the line search found no decrease (relative reduced gradient " +
                   std::to_string(report.final_residual) + ")");
     }

@@ -185,6 +185,9 @@ public:
     radii_ = u.array().exp();
     geometry_.resize(nt);
     weights_.assign(t.number_of_edges(), 0.0);
+    k_.resize(t.number_of_vertices());
+    for(int v = 0; v < t.number_of_vertices(); ++v)
+      k_[v] = t.is_boundary_vertex[v] ? M_PI : 2.0 * M_PI;
     invalid_faces_ = 0;
     for(int f = 0; f < nt; ++f)
     {
@@ -194,7 +197,10 @@ public:
                                                       {lengths_[e[0]], lengths_[e[1]], lengths_[e[2]]});
       invalid_faces_ += !geometry_[f].valid;
       for(int c = 0; c < 3; ++c)
+      {
         weights_[e[c]] += geometry_[f].weight[c];
+        k_[v[c]] -= geometry_[f].angles.angle[c];
+      }
     }
     if constexpr(develops_faces)
       measure_developed_faces(t);
@@ -212,6 +218,8 @@ public:
   /// w_ij = d theta / d u summed over the edge's faces (Delta_ij = -w_ij).
   const std::vector<double>& lengths() const { return lengths_; }
   const std::vector<double>& weights() const { return weights_; }
+  /// The curvature K(u) per vertex (as `Curvature_map::evaluate` gives it).
+  const Eigen::VectorXd& curvature() const { return k_; }
   /// Faces of the metric that are not triangles at u (possible for vertex scaling and
   /// inversive distance only).
   int invalid_faces() const { return invalid_faces_; }
@@ -323,6 +331,29 @@ private:
   {
     const int nv = t.number_of_vertices();
     z_.assign(nv, {0.0, 0.0});
+    // The order found for this triangulation is kept until the metric flips an edge: it
+    // costs three quarters of the development, and a fixed order keeps the development one
+    // smooth function of the lengths and angles between flips.
+    if(!placements_.empty() && placements_version_ == curvature_->triangulation_version())
+    {
+      const std::vector<Placement> order = std::move(placements_);
+      placements_.clear();
+      const std::array<int, 3>& r = t.faces[order.front().face];
+      z_[r[1]] = {lengths_[root_edge_], 0.0};
+      for(const Placement& p : order)
+        place(t, p.face, p.corner);
+    }
+    else
+    {
+      placements_version_ = curvature_->triangulation_version();
+      find_development_order(t);
+    }
+    measure_developed_mesh_faces();
+  }
+
+  void find_development_order(const internal::Mesh_index& t)
+  {
+    const int nv = t.number_of_vertices();
     placements_.clear();
     constexpr double eps = std::numeric_limits<double>::epsilon();
     std::vector<double> error(nv, HUGE_VAL); // finite once placed
@@ -367,7 +398,10 @@ private:
       error[third] = estimate;
       offer_faces_around(third);
     }
+  }
 
+  void measure_developed_mesh_faces()
+  {
     const int nf = mesh_.number_of_faces();
     area_.resize(nf);
     angle_.resize(nf);
@@ -484,7 +518,7 @@ private:
   double mesh_total_area_ = 0;
 
   Curvature_map<Metric>* curvature_ = nullptr;
-  Eigen::VectorXd u_, u0_, radii_;
+  Eigen::VectorXd u_, u0_, radii_, k_;
   std::vector<double> lengths_, weights_;
   std::vector<Face_geometry> geometry_; // per face of the triangulation
   int invalid_faces_ = 0;
@@ -493,6 +527,7 @@ private:
   double area_scale_ = 1;
   std::vector<internal::Point2> z_;           // developed vertices
   std::vector<Placement> placements_; // the root's third vertex first
+  long placements_version_ = -1;      // the triangulation version they were found for
   int root_edge_ = -1;
   // Scratch of gradient_u.
   mutable std::vector<double> raw_area_partial_;
@@ -522,7 +557,34 @@ struct Has_curvature_gradient<Energy, State,
   : std::true_type
 {};
 
+template <class Energy, class State, class = void>
+struct Has_hessian_diagonal : std::false_type
+{};
+template <class Energy, class State>
+struct Has_hessian_diagonal<Energy, State,
+                            std::void_t<decltype(std::declval<const Energy&>().hessian_diagonal(
+                              std::declval<const State&>(), std::declval<Eigen::VectorXd&>()))>>
+  : std::true_type
+{};
+
+template <class Energy, class = void>
+struct Has_energy_name : std::false_type
+{};
+template <class Energy>
+struct Has_energy_name<Energy, std::void_t<decltype(Energy::name)>> : std::true_type
+{};
+
 } // namespace internal
+
+/// `Energy::name` ("log-area", ...), or "user-defined" for an energy without one.
+template <class Energy>
+const char* energy_name()
+{
+  if constexpr(internal::Has_energy_name<Energy>::value)
+    return Energy::name;
+  else
+    return "user-defined";
+}
 
 /// Whether `Energy` gives its value on states of `Metric` (all but the curvature entropy).
 template <class Energy, class Metric>
@@ -530,6 +592,11 @@ constexpr bool has_energy_value = internal::Has_energy_value<Energy, Energy_stat
 /// Whether `Energy` gives grad_k E directly (`gradient_k`).
 template <class Energy, class Metric>
 constexpr bool has_curvature_gradient = internal::Has_curvature_gradient<Energy, Energy_state<Metric>>::value;
+
+/// Whether `Energy` estimates the diagonal of its Hessian in u (`hessian_diagonal`), which
+/// the singular-values optimizer turns into its preconditioner.
+template <class Energy, class Metric>
+constexpr bool has_hessian_diagonal = internal::Has_hessian_diagonal<Energy, Energy_state<Metric>>::value;
 
 /// E at the state, or NaN for an energy without a value.
 template <class Energy, class Metric>
@@ -613,6 +680,12 @@ struct U_square
     partials.u += 2.0 / h.size() * h;
   }
 
+  template <class Metric>
+  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
+  {
+    m = Eigen::VectorXd::Constant(state.u().size(), 2.0 / state.u().size());
+  }
+
 private:
   template <class Metric>
   static Eigen::VectorXd centred(const Energy_state<Metric>& state)
@@ -648,6 +721,19 @@ struct Area_distortion
     const double n = state.number_of_faces();
     for(int f = 0; f < state.number_of_faces(); ++f)
       partials.area[f] += 2.0 / n * (state.area(f) / state.mesh_area(f) - 1.0) / state.mesh_area(f);
+  }
+
+  /// The residual s_f / A_f - 1 moves by about (2/3) s_f / A_f per unit of u at a corner.
+  template <class Metric>
+  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
+  {
+    m.setZero(state.u().size());
+    for(int f = 0; f < state.number_of_faces(); ++f)
+    {
+      const double x = state.area(f) / state.mesh_area(f);
+      for(int v : state.mesh().faces[f])
+        m[v] += 8.0 / 3.0 * x * x / state.number_of_faces();
+    }
   }
 };
 
@@ -717,6 +803,16 @@ public:
     for(int f = 0; f < state.number_of_faces(); ++f)
       partials.area[f] +=
         weight(state, f) * log_squared(state.area(f) / state.mesh_area(f)).derivative / state.mesh_area(f);
+  }
+
+  /// log s_f moves by about 2/3 per unit of u at a corner: the lumped Gauss-Newton Hessian.
+  template <class Metric>
+  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
+  {
+    m.setZero(state.u().size());
+    for(int f = 0; f < state.number_of_faces(); ++f)
+      for(int v : state.mesh().faces[f])
+        m[v] += 8.0 / 3.0 * weight(state, f);
   }
 
   struct Value_and_derivative

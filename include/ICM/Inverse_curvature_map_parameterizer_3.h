@@ -2,13 +2,16 @@
 // concept, so that
 //   CGAL::Surface_mesh_parameterization::parameterize(mesh, parameterizer, bhd, uvmap)
 // computes the conformal parameterization with least area distortion (the minimum of the
-// curvature entropy with a free boundary, paper Thm 3.5).
+// curvature entropy with a free boundary, paper Thm 3.5), or with a free boundary the least
+// value of another energy (Energies.h, Curvature_space_optimizer.h).
 
 #ifndef ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 #define ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
+#include <ICM/Curvature_space_optimizer.h>
+#include <ICM/Energies.h>
 #include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Inversive_distance_metric.h>
 #include <ICM/Vertex_scaling_metric.h>
@@ -112,6 +115,8 @@ struct Parameterization_options
   std::function<void(const std::string&)> progress;
   /// On a `CGAL::Seam_mesh`: its seams as free border (default) or as cuts of one surface.
   Seam_reading seams = Seam_reading::Border;
+  /// The optimizer of an `Energy` other than the entropy (started from the entropy optimum).
+  Curvature_space_options energy;
 };
 
 /// What the last `parameterize()` did: sizes, topology, convergence, timings, the reason of
@@ -128,6 +133,13 @@ struct Parameterization_report
   /// was used instead ("vertex-scaling: the Newton line search stalled ...").
   std::string fallback_reason;
   int newton_iterations = 0;             ///< of the metric that succeeded (a fallback not counted)
+  std::string energy;                    ///< the energy minimised ("entropy", "log-area", ...)
+  /// The energy optimizer (an `Energy` other than the entropy): its steps, E at the entropy
+  /// optimum and at the result, and why it stopped early, if it did (the result is then its
+  /// last, best metric).
+  int energy_iterations = 0;
+  double initial_energy = 0, final_energy = 0;
+  std::string energy_message;
   std::vector<double> residual_history;  ///< max |k| over interior vertices per iteration
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
   double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
@@ -163,21 +175,32 @@ struct Parameterization_report
 /// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is `Default_sparse_solver`:
 ///         Eigen's `SimplicialLDLT`, switching to CHOLMOD after nested dissection for large
 ///         meshes when SuiteSparse is present (`Size_adaptive_solver`).
-template <class TriangleMesh, class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default>
+/// \tparam Energy_ a model of `Energy` (doc/energies.md); `CGAL::Default` is
+///         `Curvature_entropy`, whose minimum is reached directly as the Dirichlet problem
+///         u_S = u0_S (the free-boundary optimum). Any other energy is minimised over the
+///         free-boundary admissible metrics by `minimize_energy_on_singular_values`, started
+///         from that optimum (options: `Parameterization_options::energy`).
+template <class TriangleMesh, class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default,
+          class Energy_ = CGAL::Default>
 class Inverse_curvature_map_parameterizer_3
 {
 public:
   using Error_code = CGAL::Surface_mesh_parameterization::Error_code;
   using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
   using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
+  using Energy = typename CGAL::Default::Get<Energy_, Curvature_entropy>::type;
+  /// Whether the energy needs the optimizer (the entropy's minimum is the Dirichlet problem).
+  static constexpr bool optimizes_energy = !std::is_same<Energy, Curvature_entropy>::value;
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
 
-  /// A parameterizer with these options (doc/parameterizer.md).
+  /// A parameterizer with these options (doc/parameterizer.md) minimising `energy`.
   explicit Inverse_curvature_map_parameterizer_3(
-    const Parameterization_options& options = Parameterization_options())
-    : options_(options), report_(std::make_shared<Parameterization_report>())
+    const Parameterization_options& options = Parameterization_options(), const Energy& energy = Energy())
+    : options_(options), energy_(energy), report_(std::make_shared<Parameterization_report>())
   {}
+
+  const Energy& energy() const { return energy_; }
 
   /// The options of the next `parameterize()` call.
   Parameterization_options& options() { return options_; }
@@ -208,6 +231,7 @@ public:
       internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh),
                            index, vertices);
     run.report_topology(index);
+    run.report.energy = energy_name<Energy>();
     run.report.seconds_index = run.lap();
     if(!indexed.ok())
       return run.fail(indexed.code, indexed.message);
@@ -215,7 +239,12 @@ public:
       return run.fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
     if constexpr(internal::Is_seam_mesh<TriangleMesh>::value)
       if(options_.seams == Seam_reading::Cut)
+      {
+        if(optimizes_energy)
+          return run.fail(ERROR_WRONG_PARAMETER, std::string("the energy \"") + energy_name<Energy>() +
+                                                   "\" is not available with Seam_reading::Cut (cones): only the entropy");
         return parameterize_cut_surface(mesh, uvmap, vpmap, run);
+      }
 
     // Steps 1-7 in the class of `Metric`, then in the circle packing's if it cannot get there.
     std::vector<Uv> uv;
@@ -380,6 +409,14 @@ private:
       }
     }
 
+    if constexpr(optimizes_energy)
+    {
+      const Error_code status = minimize_energy(index, metric, solver, u, report);
+      report.seconds_optimum += run.lap();
+      if(status != OK)
+        return status;
+    }
+
     stage("layout");
     Eigen::VectorXd k;
     std::vector<double> w;
@@ -429,6 +466,29 @@ private:
     return OK;
   }
 
+  /// Step 5 for an energy other than the entropy, from the entropy optimum `u`. An optimizer
+  /// that stops early (iteration cap, a line search without decrease) still leaves its best
+  /// metric, which is used and the reason reported; only a failure at the start is an error.
+  template <class M>
+  Error_code minimize_energy(const internal::Mesh_index& index, const M& metric,
+                             Inverse_curvature_map<Solver, M>& solver, Eigen::VectorXd& u,
+                             Parameterization_report& report)
+  {
+    const Curvature_space_report optimizer =
+      minimize_energy_on_singular_values(solver, index, metric, energy_, u, options_.energy);
+    report.energy_iterations = optimizer.iterations;
+    report.newton_iterations += optimizer.newton_iterations;
+    report.initial_energy = optimizer.initial_energy;
+    report.final_energy = optimizer.final_energy;
+    report.energy_message = optimizer.message;
+    if(optimizer.energy_history.empty())
+    {
+      report.message = std::string(energy_name<Energy>()) + " energy: " + optimizer.message;
+      return CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
+    }
+    return CGAL::Surface_mesh_parameterization::OK;
+  }
+
   void stage(const std::string& name) const
   {
     if(options_.progress)
@@ -436,6 +496,7 @@ private:
   }
 
   Parameterization_options options_;
+  Energy energy_;
   std::shared_ptr<Parameterization_report> report_;
 };
 

@@ -1,0 +1,439 @@
+// Energies (Energies.h) and the two optimizers of the admissible curvature space
+// (Curvature_space_optimizer.h): exact gradients against finite differences for every
+// energy and metric, a user-defined energy, the entropy by both optimizers equal to the
+// free-boundary optimum, both optimizers at one optimum, Theorem 3.2 at the optimum of every
+// energy, interior cones, and the log-area optimum through the parameterizer lowering Table
+// I's eq. 8 without flipped faces on the shared disks.
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Curvature_space_optimizer.h>
+#include <ICM/Distortion.h>
+#include <ICM/Energies.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/Inversive_distance_metric.h>
+#include <ICM/Optimal_metric.h>
+#include <ICM/Singular_vertices.h>
+#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
+#include <CGAL/boost/graph/io.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point_2 = Kernel::Point_2;
+using Surface_mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using ICM::internal::Mesh_index;
+namespace SMP = CGAL::Surface_mesh_parameterization;
+
+Mesh_index index_file(const std::string& name) { return icm_test::index_of(icm_test::data_path(name)); }
+
+/// A user-defined energy: the fourth power of the log area ratio, which punishes the worst
+/// faces harder than eq. 8. It names no metric and no derivative of one: the state's areas
+/// and the chain rule do the rest.
+struct Quartic_log_area
+{
+  template <class Metric>
+  double value(const ICM::Energy_state<Metric>& state) const
+  {
+    double sum = 0;
+    for(int f = 0; f < state.number_of_faces(); ++f)
+      sum += std::pow(std::log(state.area(f) / state.mesh_area(f)), 4);
+    return sum / state.number_of_faces();
+  }
+  template <class Metric>
+  void gradient(const ICM::Energy_state<Metric>& state, ICM::Energy_gradient& partials) const
+  {
+    for(int f = 0; f < state.number_of_faces(); ++f)
+    {
+      const double l = std::log(state.area(f) / state.mesh_area(f));
+      partials.area[f] += 4.0 * l * l * l / state.area(f) / state.number_of_faces();
+    }
+  }
+};
+
+/// The entropy optimum of `metric` for the border as S, and the singular set.
+template <class Metric>
+Eigen::VectorXd entropy_optimum(const Mesh_index& index, const Metric& metric)
+{
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  EXPECT_TRUE(report.converged) << report.message;
+  return u;
+}
+
+/// Largest |finite difference - gradient| over every 5th vertex, relative to max |gradient|.
+template <class Metric, class Energy>
+double gradient_error(const Mesh_index& index, const Metric& metric, const Energy& energy, const Eigen::VectorXd& u)
+{
+  ICM::Curvature_map<Metric> curvature(index, metric);
+  ICM::Energy_state<Metric> state(index);
+  EXPECT_TRUE(state.update(curvature, u));
+  const Eigen::VectorXd g = ICM::energy_gradient(energy, state);
+  EXPECT_NEAR(g.sum(), 0.0, 1e-10 * g.cwiseAbs().sum()); // blind to the global scale
+  const double h = 1e-6;
+  double worst = 0;
+  for(int v = 0; v < index.number_of_vertices(); v += 5)
+  {
+    Eigen::VectorXd up = u, down = u;
+    up[v] += h;
+    down[v] -= h;
+    state.update(curvature, up);
+    const double e_up = energy.value(state);
+    state.update(curvature, down);
+    const double e_down = energy.value(state);
+    worst = std::max(worst, std::abs((e_up - e_down) / (2 * h) - g[v]));
+  }
+  return worst / g.cwiseAbs().maxCoeff();
+}
+
+template <class Metric>
+class EnergyGradient : public testing::Test
+{
+};
+using Metrics = testing::Types<ICM::Intrinsic_delaunay_metric, ICM::Circle_packing_metric,
+                               ICM::Vertex_scaling_metric, ICM::Inversive_distance_metric>;
+class Metric_names
+{
+public:
+  template <class T>
+  static std::string GetName(int) { return T::name; }
+};
+TYPED_TEST_SUITE(EnergyGradient, Metrics, Metric_names);
+
+/// Optimizer options tight enough for Theorem 3.2 to 1e-6.
+ICM::Curvature_space_options tight_options()
+{
+  ICM::Curvature_space_options options;
+  options.tolerance = 1e-10;
+  options.energy_tolerance = 0;
+  options.max_iterations = 1000;
+  return options;
+}
+
+/// Theorem 3.2's residual at u: the S components of grad_k E are equal at an optimum.
+template <class Metric, class Energy>
+double theorem_3_2(const Mesh_index& index, const Metric& metric, const Energy& energy,
+                   const std::vector<char>& is_singular, const Eigen::VectorXd& u)
+{
+  Eigen::VectorXd h;
+  EXPECT_TRUE(ICM::curvature_gradient(index, metric, energy, u, h));
+  return ICM::theorem_3_2_residual(h, is_singular);
+}
+
+} // namespace
+
+TYPED_TEST(EnergyGradient, EveryEnergysGradientEqualsFiniteDifferences)
+{
+  // At the entropy optimum moved off it a little (so that no term vanishes and, for the
+  // intrinsic triangulation, the development is that of a nearly flat metric).
+  for(const char* name : {"nefertiti.off", "mushroom.off"})
+  {
+    const Mesh_index index = index_file(name);
+    const TypeParam metric(index);
+    const Eigen::VectorXd u = icm_test::random_perturbation(entropy_optimum(index, metric), 1e-3, 5);
+    EXPECT_LT(gradient_error(index, metric, ICM::U_square(), u), 1e-6) << name;
+    EXPECT_LT(gradient_error(index, metric, ICM::Area_distortion(), u), 1e-6) << name;
+    EXPECT_LT(gradient_error(index, metric, ICM::Angle_distortion(), u), 1e-6) << name;
+    EXPECT_LT(gradient_error(index, metric, ICM::Log_area_distortion(), u), 1e-6) << name;
+    EXPECT_LT(gradient_error(index, metric, ICM::Log_area_distortion(ICM::Face_weighting::Uniform), u), 1e-6) << name;
+    EXPECT_LT(gradient_error(index, metric, Quartic_log_area(), u), 1e-6) << name;
+  }
+}
+
+TYPED_TEST(EnergyGradient, EnergiesIgnoreTheGlobalScale)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const TypeParam metric(index);
+  const Eigen::VectorXd u = icm_test::random_perturbation(entropy_optimum(index, metric), 1e-2, 7);
+  ICM::Curvature_map<TypeParam> curvature(index, metric);
+  ICM::Energy_state<TypeParam> state(index), scaled(index);
+  ASSERT_TRUE(state.update(curvature, u));
+  ICM::Curvature_map<TypeParam> other(index, metric);
+  ASSERT_TRUE(scaled.update(other, Eigen::VectorXd(u.array() + 0.7)));
+  const double total = [&] {
+    double sum = 0;
+    for(int f = 0; f < state.number_of_faces(); ++f)
+      sum += state.area(f);
+    return sum;
+  }();
+  EXPECT_NEAR(total, state.mesh_total_area(), 1e-12 * total); // normalised areas
+  for(double a : {ICM::U_square().value(state) - ICM::U_square().value(scaled),
+                  ICM::Area_distortion().value(state) - ICM::Area_distortion().value(scaled),
+                  ICM::Angle_distortion().value(state) - ICM::Angle_distortion().value(scaled),
+                  ICM::Log_area_distortion().value(state) - ICM::Log_area_distortion().value(scaled)})
+    EXPECT_NEAR(a, 0.0, 1e-12);
+}
+
+TEST(EnergyGradient, EntropyGivesItsCurvatureGradientAndTheMatchingUGradient)
+{
+  // grad_k E = u - u0 and grad_u E = Delta (u - u0): Delta^{-1} of the one is the other.
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric(index);
+  const Eigen::VectorXd u = icm_test::random_perturbation(metric.u0, 0.2, 3);
+  Eigen::VectorXd direct;
+  ASSERT_TRUE(ICM::curvature_gradient(index, metric, ICM::Curvature_entropy(), u, direct));
+  EXPECT_LT((direct - (u - metric.u0)).cwiseAbs().maxCoeff(), 1e-15);
+  // The same through the generic path (an energy that only states grad_u).
+  struct Entropy_without_k : ICM::Curvature_entropy
+  {
+    void gradient_k() const {} // hides the base's gradient_k: not the concept's signature
+  };
+  Eigen::VectorXd solved;
+  ASSERT_TRUE(ICM::curvature_gradient(index, metric, Entropy_without_k(), u, solved));
+  solved.array() -= (solved - direct).mean();
+  EXPECT_LT((solved - direct).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(EnergyOptimizer, EntropyByBothOptimizersIsTheFreeBoundaryOptimum)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const std::vector<char> S = ICM::boundary_singular_set(index);
+  for(int metric_kind = 0; metric_kind < 2; ++metric_kind)
+  {
+    auto check = [&](const auto& metric) {
+      const Eigen::VectorXd optimum = entropy_optimum(index, metric);
+      // Both start away from it: u_S moved by up to 0.3.
+      Eigen::VectorXd start = metric.u0;
+      const Eigen::VectorXd noise = icm_test::random_perturbation(Eigen::VectorXd::Zero(start.size()), 0.3, 11);
+      for(int v = 0; v < index.number_of_vertices(); ++v)
+        if(S[v])
+          start[v] += noise[v];
+
+      Eigen::VectorXd fast = start;
+      const ICM::Curvature_space_report a =
+        ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Curvature_entropy(), fast, tight_options());
+      ASSERT_TRUE(a.converged) << a.message;
+      EXPECT_LT((fast - optimum).cwiseAbs().maxCoeff(), 1e-6) << "singular values, " << metric.name;
+
+      Eigen::VectorXd reference = start;
+      ICM::Curvature_space_options options = tight_options();
+      options.tolerance = 1e-9;
+      const ICM::Curvature_space_report b =
+        ICM::minimize_energy_by_projected_gradient(index, metric, S, ICM::Curvature_entropy(), reference, options);
+      ASSERT_TRUE(b.converged) << b.message;
+      EXPECT_LT((reference - optimum).cwiseAbs().maxCoeff(), 1e-6) << "Algorithm 4, " << metric.name;
+      std::cout << metric.name << ": entropy from a perturbed border, singular values " << a.iterations
+                << " steps, |u - free boundary| " << (fast - optimum).cwiseAbs().maxCoeff() << "; Algorithm 4 "
+                << b.iterations << " steps, " << (reference - optimum).cwiseAbs().maxCoeff() << "\n";
+    };
+    if(metric_kind == 0)
+      check(ICM::Intrinsic_delaunay_metric(index));
+    else
+      check(ICM::Circle_packing_metric(index));
+  }
+}
+
+TEST(EnergyOptimizer, BothOptimizersReachTheSameOptimum)
+{
+  // Algorithm 4 is plain gradient descent in k, whose conditioning for area energies grows
+  // like the cube of the border's length: the angle and u-square energies are those it
+  // finishes in reasonable time on nefertiti (doc/energies.md).
+  const Mesh_index index = index_file("nefertiti.off");
+  const std::vector<char> S = ICM::boundary_singular_set(index);
+  const ICM::Circle_packing_metric metric(index);
+  const Eigen::VectorXd start = entropy_optimum(index, metric);
+  auto compare = [&](const auto& energy, const char* name) {
+    Eigen::VectorXd fast = start, reference = start;
+    const ICM::Curvature_space_report a =
+      ICM::minimize_energy_on_singular_values(index, metric, S, energy, fast, tight_options());
+    ASSERT_TRUE(a.converged) << name << ": " << a.message;
+    ICM::Curvature_space_options options;
+    options.tolerance = 1e-8;
+    options.max_iterations = 4000;
+    const ICM::Curvature_space_report b =
+      ICM::minimize_energy_by_projected_gradient(index, metric, S, energy, reference, options);
+    ASSERT_TRUE(b.converged) << name << ": " << b.message;
+    EXPECT_LT((fast - reference).cwiseAbs().maxCoeff(), 1e-6) << name;
+    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-10 * a.final_energy) << name;
+    EXPECT_LT(a.final_energy, a.initial_energy) << name;
+    std::cout << name << ": singular values " << a.iterations << " steps, Algorithm 4 " << b.iterations
+              << " steps, |u difference| " << (fast - reference).cwiseAbs().maxCoeff() << "\n";
+  };
+  compare(ICM::Angle_distortion(), "angle");
+  compare(ICM::U_square(), "u-square");
+}
+
+TEST(EnergyOptimizer, TheoremThreePointTwoHoldsAtEveryEnergysOptimum)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const std::vector<char> S = ICM::boundary_singular_set(index);
+  auto check = [&](const auto& metric) {
+    auto at_optimum = [&](const auto& energy, const char* name) {
+      Eigen::VectorXd u = entropy_optimum(index, metric);
+      const double before = theorem_3_2(index, metric, energy, S, u);
+      const ICM::Curvature_space_report report =
+        ICM::minimize_energy_on_singular_values(index, metric, S, energy, u, tight_options());
+      ASSERT_TRUE(report.converged) << name << ": " << report.message;
+      const double after = theorem_3_2(index, metric, energy, S, u);
+      EXPECT_LT(after, 1e-6) << metric.name << ", " << name;
+      std::cout << metric.name << ", " << name << ": Theorem 3.2 residual " << before << " at the entropy optimum, "
+                << after << " at the optimum (" << report.iterations << " steps)\n";
+    };
+    at_optimum(ICM::Curvature_entropy(), "entropy");
+    at_optimum(ICM::U_square(), "u-square");
+    at_optimum(ICM::Area_distortion(), "area");
+    at_optimum(ICM::Angle_distortion(), "angle");
+    at_optimum(ICM::Log_area_distortion(), "log-area");
+    at_optimum(ICM::Log_area_distortion(ICM::Face_weighting::Uniform), "log-area (uniform)");
+    at_optimum(Quartic_log_area(), "user-defined quartic log-area");
+  };
+  check(ICM::Intrinsic_delaunay_metric(index));
+  check(ICM::Circle_packing_metric(index));
+}
+
+TEST(EnergyOptimizer, InteriorConesAreSingularVerticesLikeTheBorder)
+{
+  // Three interior cones of Algorithm 3 join the border in S; the optimum is flat elsewhere
+  // and Theorem 3.2 holds over all of S.
+  const Mesh_index index = index_file("mushroom.off");
+  const ICM::Circle_packing_metric metric(index);
+  std::string message;
+  const std::vector<int> minima = ICM::curvature_minima(index, metric, message);
+  ASSERT_GE(minima.size(), 3u) << message;
+  std::vector<char> S = ICM::boundary_singular_set(index);
+  for(int i = 0; i < 3; ++i)
+    S[minima[i]] = 1;
+  Eigen::VectorXd u;
+  const ICM::Curvature_space_report report =
+    ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), u, tight_options());
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_LT(report.final_energy, report.initial_energy);
+  EXPECT_LT(theorem_3_2(index, metric, ICM::Log_area_distortion(), S, u), 1e-6);
+  ICM::Curvature_map<ICM::Circle_packing_metric> curvature(index, metric);
+  Eigen::VectorXd k;
+  curvature.evaluate(u, k);
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    if(!S[v])
+      ASSERT_LT(std::abs(k[v]), 1e-9) << v;
+  for(int i = 0; i < 3; ++i)
+    EXPECT_GT(std::abs(k[minima[i]]), 1e-3) << "cone " << i;
+
+  // The intrinsic triangulation's development needs a cut at cones: refused with the reason.
+  const ICM::Intrinsic_delaunay_metric intrinsic(index);
+  Eigen::VectorXd w;
+  const ICM::Curvature_space_report refused =
+    ICM::minimize_energy_on_singular_values(index, intrinsic, S, ICM::Log_area_distortion(), w);
+  EXPECT_FALSE(refused.converged);
+  EXPECT_NE(refused.message.find("interior cone"), std::string::npos) << refused.message;
+}
+
+TEST(EnergyOptimizer, AUserDefinedEnergyIsMinimised)
+{
+  const Mesh_index index = index_file("three_peaks.off");
+  const ICM::Intrinsic_delaunay_metric metric(index);
+  const std::vector<char> S = ICM::boundary_singular_set(index);
+  Eigen::VectorXd u;
+  const ICM::Curvature_space_report report =
+    ICM::minimize_energy_on_singular_values(index, metric, S, Quartic_log_area(), u);
+  ASSERT_FALSE(report.energy_history.empty()) << report.message;
+  EXPECT_LT(report.final_energy, 0.5 * report.initial_energy);
+  std::cout << "quartic log-area on three_peaks: " << report.initial_energy << " -> " << report.final_energy
+            << " in " << report.iterations << " steps (" << report.message << ")\n";
+}
+
+namespace {
+
+struct Table_row
+{
+  double eq8 = 0;
+  std::size_t flipped = 0;
+  double seconds = 0;
+  int iterations = 0;
+  std::string message;
+};
+
+/// Parameterizes the mesh with `Energy` (entropy when CGAL::Default) through CGAL's
+/// parameterize(), and measures Table I's eq. 8 (per face) on the layout.
+template <class Energy>
+Table_row parameterize_with(Surface_mesh& mesh)
+{
+  auto uv = mesh.add_property_map<Surface_mesh::Vertex_index, Point_2>("v:energy_uv").first;
+  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, Energy> parameterizer;
+  const auto bhd = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
+  const SMP::Error_code status = SMP::parameterize(mesh, parameterizer, bhd, uv);
+  Table_row row;
+  row.message = parameterizer.report().message + parameterizer.report().energy_message;
+  EXPECT_EQ(status, SMP::OK) << row.message;
+  const ICM::Distortion_measures d = ICM::measure_distortion(mesh, uv);
+  row.eq8 = d.log_area_distortion;
+  row.flipped = d.flipped_faces;
+  row.seconds = parameterizer.report().seconds_optimum;
+  row.iterations = parameterizer.report().energy_iterations;
+  mesh.remove_property_map(uv);
+  return row;
+}
+
+class EnergyLogArea : public testing::TestWithParam<const char*>
+{
+};
+
+} // namespace
+
+TEST_P(EnergyLogArea, OptimumLowersEquation8WithoutFlippedFaces)
+{
+  const std::string name = GetParam();
+  const bool bundled = name == "nefertiti.off" || name == "three_peaks.off";
+  if(!bundled && !icm_test::shared_dir_exists())
+    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
+  Surface_mesh mesh;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(bundled ? icm_test::data_path(name) : icm_test::shared_path(name), mesh));
+  const Table_row entropy = parameterize_with<CGAL::Default>(mesh);
+  const Table_row log_area = parameterize_with<ICM::Log_area_distortion>(mesh);
+  EXPECT_LT(log_area.eq8, entropy.eq8) << name;
+  EXPECT_EQ(entropy.flipped, 0u) << name;
+  EXPECT_EQ(log_area.flipped, 0u) << name;
+  std::cout << name << ": eq. 8 per face " << entropy.eq8 << " (entropy, " << entropy.seconds << " s) -> "
+            << log_area.eq8 << " (log-area, " << log_area.iterations << " steps, " << log_area.seconds << " s)"
+            << (log_area.message.empty() ? "" : ", " + log_area.message) << "\n";
+  RecordProperty("eq8_entropy", std::to_string(entropy.eq8));
+  RecordProperty("eq8_log_area", std::to_string(log_area.eq8));
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, EnergyLogArea,
+                         testing::Values("nefertiti.off", "three_peaks.off", "mushroom.off", "lion-head.off",
+                                         "camelhead.off", "mannequin-devil.off", "horse.obj"),
+                         [](const testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           for(char& c : name)
+                             if(!std::isalnum(static_cast<unsigned char>(c)))
+                               c = '_';
+                           return name;
+                         });
+
+TEST(EnergyParameterizer, DefaultEnergyKeepsTheFreeBoundaryOptimum)
+{
+  // CGAL::Default and an explicit Curvature_entropy both take the Dirichlet shortcut: the
+  // same UVs as before energies existed, and no optimizer step.
+  Surface_mesh mesh;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(icm_test::data_path("nefertiti.off"), mesh));
+  auto a = mesh.add_property_map<Surface_mesh::Vertex_index, Point_2>("v:a").first;
+  auto b = mesh.add_property_map<Surface_mesh::Vertex_index, Point_2>("v:b").first;
+  const auto bhd = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
+  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh> by_default;
+  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, ICM::Curvature_entropy> entropy;
+  ASSERT_EQ(SMP::parameterize(mesh, by_default, bhd, a), SMP::OK);
+  ASSERT_EQ(SMP::parameterize(mesh, entropy, bhd, b), SMP::OK);
+  for(auto v : vertices(mesh))
+  {
+    EXPECT_EQ(get(a, v).x(), get(b, v).x());
+    EXPECT_EQ(get(a, v).y(), get(b, v).y());
+  }
+  EXPECT_EQ(by_default.report().energy, "entropy");
+  EXPECT_EQ(by_default.report().energy_iterations, 0);
+  static_assert(!decltype(by_default)::optimizes_energy, "the default is the Dirichlet shortcut");
+}
