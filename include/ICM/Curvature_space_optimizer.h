@@ -366,6 +366,14 @@ public:
         break;
       last = largest;
       laplacian.assemble(state_.weights());
+      // Far from the solution a fresh factorization (a Newton step, quadratic) pays; near it
+      // the one at hand contracts the residual by the small relative change of the weights.
+      if(largest > fresh_factorization_above)
+      {
+        ++report_.factorizations;
+        if(!laplacian.factorize())
+          break;
+      }
       Eigen::VectorXd du;
       if(!solve_with_current_weights(laplacian, residual, du, report_.factorizations))
         break;
@@ -495,6 +503,7 @@ private:
   const std::vector<int>& singular_;
   Curvature_space_report& report_;
   static constexpr int max_chord_steps = 6;
+  static constexpr double fresh_factorization_above = 1e-6; // max |k_N|, radians
   Energy_gradient partials_;
   Mass_preconditioner mass_;
   Eigen::VectorXd gradient_, reduced_;

@@ -229,7 +229,20 @@ public:
   /// area. Negative for a face flipped in the development.
   double area(int f) const { return area_[f] * area_scale_; }
   /// Corner angle c of mesh face f under the metric (negative in a flipped developed face).
-  double angle(int f, int c) const { return angle_[f][c]; }
+  double angle(int f, int c) const
+  {
+    if constexpr(develops_faces)
+    {
+      // Computed when asked: three arctangents per face are a sixth of an update on the
+      // horse, and only the angle energies read them.
+      const std::array<int, 3>& v = mesh_.faces[f];
+      const internal::Point2 a = internal::minus(z_[v[(c + 1) % 3]], z_[v[c]]);
+      const internal::Point2 b = internal::minus(z_[v[(c + 2) % 3]], z_[v[c]]);
+      return std::atan2(internal::cross(a, b), internal::dot(a, b));
+    }
+    else
+      return angle_[f][c];
+  }
   double mesh_area(int f) const { return mesh_area_[f]; }
   double mesh_angle(int f, int c) const { return mesh_angle_[f][c]; }
   double mesh_total_area() const { return mesh_total_area_; }
@@ -404,18 +417,11 @@ private:
   {
     const int nf = mesh_.number_of_faces();
     area_.resize(nf);
-    angle_.resize(nf);
     double total = 0;
     for(int f = 0; f < nf; ++f)
     {
       const std::array<int, 3>& v = mesh_.faces[f];
       area_[f] = 0.5 * internal::cross(internal::minus(z_[v[1]], z_[v[0]]), internal::minus(z_[v[2]], z_[v[0]]));
-      for(int c = 0; c < 3; ++c)
-      {
-        const internal::Point2 a = internal::minus(z_[v[(c + 1) % 3]], z_[v[c]]);
-        const internal::Point2 b = internal::minus(z_[v[(c + 2) % 3]], z_[v[c]]);
-        angle_[f][c] = std::atan2(internal::cross(a, b), internal::dot(a, b));
-      }
       total += area_[f];
     }
     area_scale_ = mesh_total_area_ / total;
@@ -523,7 +529,7 @@ private:
   std::vector<Face_geometry> geometry_; // per face of the triangulation
   int invalid_faces_ = 0;
   std::vector<double> area_;                  // raw, per mesh face
-  std::vector<std::array<double, 3>> angle_;  // per mesh face corner
+  std::vector<std::array<double, 3>> angle_;  // per mesh face corner (metric faces only)
   double area_scale_ = 1;
   std::vector<internal::Point2> z_;           // developed vertices
   std::vector<Placement> placements_; // the root's third vertex first
