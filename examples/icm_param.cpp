@@ -245,20 +245,6 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
 
 // --- checks before any work ------------------------------------------------------------
 
-/// Whether two paths name one file: the same path once resolved, or (both existing) the same
-/// file through links.
-bool same_file(const std::string& a, const std::string& b)
-{
-  std::error_code ec;
-  if(fs::equivalent(a, b, ec))
-    return true;
-  const fs::path ca = fs::weakly_canonical(a, ec);
-  if(ec)
-    return false;
-  const fs::path cb = fs::weakly_canonical(b, ec);
-  return !ec && ca == cb;
-}
-
 /// Why the outputs cannot be written, found before hours of work rather than after: two
 /// outputs on one file, an output over an input, a read-only target, a missing directory.
 std::string check_output_paths(const Arguments& args)
@@ -266,13 +252,13 @@ std::string check_output_paths(const Arguments& args)
   std::vector<std::pair<std::string, std::string>> outputs = {{"-o", args.output}};
   if(!args.svg.empty())
     outputs.push_back({"--svg", args.svg});
-  if(outputs.size() == 2 && same_file(args.output, args.svg))
+  if(outputs.size() == 2 && ICM::internal::same_file(args.output, args.svg))
     return "-o and --svg name the same file '" + args.output + "'";
   for(const auto& [option, path] : outputs)
   {
-    if(same_file(path, args.input))
+    if(ICM::internal::same_file(path, args.input))
       return option + " names the input file '" + path + "'";
-    if(!args.seams.empty() && same_file(path, args.seams))
+    if(!args.seams.empty() && ICM::internal::same_file(path, args.seams))
       return option + " names the seam file '" + path + "'";
     const std::string refusal = ICM::internal::replace_refusal(path);
     if(!refusal.empty())
@@ -479,21 +465,25 @@ int run(const Arguments& args, const Failure_report& fail)
   ICM::IO::Mesh_reading_report read;
   if(!ICM::IO::read_triangle_mesh(args.input, mesh, read, reading))
     return fail(read.message + (read.non_triangle_faces > 0 && !args.triangulate
-                                  ? " (the mesh has non-triangle faces: --triangulate splits them)"
+                                  ? " (--triangulate splits them)"
                                   : ""));
   seconds.read = since(t);
-  if(!args.json)
-    for(const std::string& repair : read.repairs())
-      std::cerr << "icm_param: " << args.input << ": " << repair << "\n";
+  // From here on a failure also says what was repaired: it may be why (a dropped vertex).
+  std::string repairs;
+  for(const std::string& repair : read.repairs())
+    repairs += (repairs.empty() ? " (the input was repaired: " : "; ") + repair;
+  if(!repairs.empty())
+    repairs += ")";
+  auto fail_after_reading = [&](const std::string& reason) { return fail(reason + repairs); };
 
   const std::vector<std::vector<Mesh::Vertex_index>> by_index = vertices_by_file_index(mesh, read);
   std::string error;
   const std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
   if(!error.empty())
-    return fail(error);
+    return fail_after_reading(error);
   std::vector<Mesh::Edge_index> user_seams;
   if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, by_index, user_seams, error))
-    return fail(error);
+    return fail_after_reading(error);
 
   ICM::Surface_parameterization_options options;
   options.remove_overlaps = !args.keep_overlaps;
@@ -518,14 +508,14 @@ int run(const Arguments& args, const Failure_report& fail)
       : run_metric<ICM::Intrinsic_delaunay_metric>(mesh, uvmap, options, cones, seams, user_seams);
   progress.finish();
   if(report.status != SMP::OK)
-    return fail(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
 
   t = Clock::now();
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
   ICM::IO::Svg_options svg_options;
   svg_options.title = fs::path(args.input).filename().string() + " — ICM";
   if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options))
-    return fail(error);
+    return fail_after_reading(error);
   seconds.write = since(t);
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);
   seconds.total = since(start);
@@ -535,7 +525,11 @@ int run(const Arguments& args, const Failure_report& fail)
                    .dump(-1, ' ', false, Json::error_handler_t::replace)
               << "\n";
   else
+  {
+    for(const std::string& repair : read.repairs())
+      std::cerr << "icm_param: " << args.input << ": " << repair << "\n";
     print_summary_line(args, mesh, report, seams.size(), measures);
+  }
   return 0;
 }
 

@@ -276,11 +276,22 @@ inline std::size_t header_count(std::string_view token, std::size_t line, const 
 inline void check_fits(std::size_t count, std::size_t bytes_each, std::size_t available,
                        std::size_t line, const std::string& what)
 {
-  if(bytes_each > 0 && count > available / bytes_each)
+  // One byte of slack: the last element needs no separator after it.
+  if(bytes_each > 0 && count > (available + 1) / bytes_each)
     refuse_at(line, "the header announces " + std::to_string(count) + " " + what +
                       " but only " + std::to_string(available) + " bytes follow (at least " +
                       std::to_string(bytes_each) + " per element): the count is wrong or the file "
                       "is truncated");
+}
+
+/// Reserves room for `count` elements announced by a header, but never more than the bytes
+/// left could hold at `realistic_bytes` each: a header within the file's size can still
+/// announce far more small elements than a real file of that size has, and reserving for
+/// all of them would cost many times the file's size.
+template <class Vector>
+void reserve_at_most(Vector& v, std::size_t count, std::size_t available, std::size_t realistic_bytes)
+{
+  v.reserve(std::min(count, available / realistic_bytes + 1));
 }
 
 /// Checks one polygon as read: at least 3 corners, each a vertex of the file, none twice.
@@ -406,12 +417,14 @@ inline void read_off(std::string_view text, Polygon_soup& soup, const Soup_readi
   const std::size_t nf = header_count(counts[1], count_line, "faces", limits.max_polygons);
   if(counts.size() == 3)
     header_count(counts[2], count_line, "edges", std::numeric_limits<std::size_t>::max());
-  // Each vertex line has at least its numbers and a separator each; each face "3 a b c".
-  check_fits(nv, 2 * layout.min_numbers(), lines.remaining_bytes(), count_line, "vertices");
-  check_fits(nf, 8, lines.remaining_bytes() - std::min(lines.remaining_bytes(), nv * 2 * layout.min_numbers()),
+  // Each vertex line has at least its numbers and a separator each, each face line a count
+  // and a separator (what else it needs is checked as it is read).
+  const std::size_t vertex_bytes = 2 * layout.min_numbers();
+  check_fits(nv, vertex_bytes, lines.remaining_bytes(), count_line, "vertices");
+  check_fits(nf, 2, lines.remaining_bytes() - std::min(lines.remaining_bytes(), nv * vertex_bytes),
              count_line, "faces");
 
-  soup.points.reserve(nv);
+  reserve_at_most(soup.points, nv, lines.remaining_bytes(), vertex_bytes);
   for(std::size_t v = 0; v < nv; ++v)
   {
     if(!next_content_line(lines, line))
@@ -454,8 +467,8 @@ inline void read_off(std::string_view text, Polygon_soup& soup, const Soup_readi
     soup.points.emplace_back(x[0], x[1], x[2]);
   }
 
-  soup.polygons.reserve(nf);
-  soup.polygon_lines.reserve(nf);
+  reserve_at_most(soup.polygons, nf, lines.remaining_bytes(), 8);
+  reserve_at_most(soup.polygon_lines, nf, lines.remaining_bytes(), 8);
   for(std::size_t f = 0; f < nf; ++f)
   {
     if(!next_content_line(lines, line))
@@ -877,8 +890,8 @@ inline void read_ply(std::string_view text, Polygon_soup& soup, const Soup_readi
     }
   }
 
-  soup.points.reserve(vertex->count);
-  soup.polygons.reserve(face ? face->count : 0);
+  reserve_at_most(soup.points, vertex->count, body.remaining_bytes(), 6);
+  reserve_at_most(soup.polygons, face ? face->count : 0, body.remaining_bytes(), 8);
   for(const Ply_element& e : elements)
     for(std::size_t i = 0; i < e.count; ++i)
     {

@@ -94,6 +94,25 @@ inline std::string replace_refusal(const std::string& path)
   return {};
 }
 
+/// Whether two paths name one file: through links when both exist, else once made absolute,
+/// resolved as far as they exist and normalised ("a.obj" and "./x/../a.obj" are one file).
+inline bool same_file(const std::string& a, const std::string& b)
+{
+  std::error_code ec;
+  if(std::filesystem::equivalent(a, b, ec))
+    return true;
+  // Absolute first: weakly_canonical leaves a relative path that names nothing yet relative.
+  auto resolved = [](const std::string& p) {
+    std::error_code e;
+    const std::filesystem::path absolute = std::filesystem::absolute(p, e);
+    std::filesystem::path r = std::filesystem::weakly_canonical(absolute, e);
+    if(e)
+      r = absolute;
+    return r.lexically_normal();
+  };
+  return resolved(a) == resolved(b);
+}
+
 /// One file for `write_files_atomically()`: its path and the function that writes its
 /// content into the stream it is given, returning whether it succeeded.
 struct Atomic_output
@@ -219,8 +238,7 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
       return false;
     }
     for(std::size_t j = 0; j < i; ++j) {
-      std::error_code ec;
-      if(outputs[i].path == outputs[j].path || std::filesystem::equivalent(outputs[i].path, outputs[j].path, ec)) {
+      if(same_file(outputs[i].path, outputs[j].path)) {
         error = "cannot write '" + outputs[i].path + "' twice (two outputs name the same file)";
         return false;
       }
