@@ -145,6 +145,11 @@ write("off_isolated_vertex_first.off", off([(9, 9, 9)] + P, [tuple(i + 1 for i i
 bowtie = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 0, 0), (-1, -1, 0), (0, -1, 0)]
 write("off_nonmanifold_vertex.off", off(bowtie, [(0, 1, 2), (0, 2, 3), (0, 4, 5), (0, 5, 6)]), 0,
       "split 1 non-manifold vertex")
+# Two closed tetrahedra sharing vertex 0: two closed fans at one vertex.
+tet = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (-1, 0, 0), (0, -1, 0), (0, 0, -1)]
+write("off_two_tetrahedra_one_vertex.off",
+      off(tet, [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3), (0, 4, 5), (0, 5, 6), (0, 6, 4), (4, 6, 5)]), 0,
+      "split 1 non-manifold vertex")
 write("off_nonmanifold_edge.off",
       off([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)], [(0, 1, 2), (1, 0, 3), (0, 1, 4)]), 1,
       "non-manifold edge")

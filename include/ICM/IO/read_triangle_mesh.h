@@ -132,32 +132,62 @@ inline std::vector<std::size_t> remove_isolated_points_in_order(Polygon_soup& so
   return kept;
 }
 
+/// Union-find over the corners of a soup, to group the corners of one vertex into fans.
+class Corner_sets
+{
+public:
+  explicit Corner_sets(std::size_t n) : parent_(n)
+  {
+    for(std::size_t i = 0; i < n; ++i)
+      parent_[i] = i;
+  }
+  std::size_t find(std::size_t i)
+  {
+    while(parent_[i] != i)
+      i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
+
+private:
+  std::vector<std::size_t> parent_;
+};
+
+/// What `check_edges()` found when it refused nothing.
+struct Edge_check
+{
+  std::string refusal;               ///< empty, or why the soup cannot be a manifold
+  bool has_singular_vertices = false; ///< a vertex whose faces form more than one fan
+};
+
 /// Refuses an edge in more than two faces, or in two faces that run along it the same way
 /// (inconsistent orientations, or a surface that cannot be oriented): the repairs stop at
-/// vertices. `file_vertex` names vertices as the file does.
-inline std::string check_edges(const Polygon_soup& soup, const std::vector<std::size_t>& file_vertex)
+/// vertices. Otherwise says whether some vertex has several fans of faces, so that the
+/// splitting (CGAL's orient_polygon_soup, the costliest step of reading) runs only when it
+/// has something to do. `file_vertex` names vertices as the file does.
+inline Edge_check check_edges(const Polygon_soup& soup, const std::vector<std::size_t>& file_vertex)
 {
   struct Side
   {
-    std::size_t low, high, polygon;
-    bool forward; // low -> high in the polygon's order
+    std::size_t low, high, polygon, corner; // corner: where the side starts in its polygon
+    bool forward;                            // low -> high in the polygon's order
     bool operator<(const Side& o) const
     {
       return low != o.low ? low < o.low : high != o.high ? high < o.high : polygon < o.polygon;
     }
   };
+  std::vector<std::size_t> first_corner(soup.polygons.size() + 1, 0);
+  for(std::size_t p = 0; p < soup.polygons.size(); ++p)
+    first_corner[p + 1] = first_corner[p] + soup.polygons[p].size();
   std::vector<Side> sides;
-  std::size_t total = 0;
-  for(const auto& polygon : soup.polygons)
-    total += polygon.size();
-  sides.reserve(total);
+  sides.reserve(first_corner.back());
   for(std::size_t p = 0; p < soup.polygons.size(); ++p)
   {
     const auto& polygon = soup.polygons[p];
     for(std::size_t c = 0; c < polygon.size(); ++c)
     {
       const std::size_t a = polygon[c], b = polygon[(c + 1) % polygon.size()];
-      sides.push_back({std::min(a, b), std::max(a, b), p, a < b});
+      sides.push_back({std::min(a, b), std::max(a, b), p, c, a < b});
     }
   }
   std::sort(sides.begin(), sides.end());
@@ -165,24 +195,54 @@ inline std::string check_edges(const Polygon_soup& soup, const std::vector<std::
     return "the edge between vertices " + std::to_string(file_vertex[s.low]) + " and " +
            std::to_string(file_vertex[s.high]);
   };
+  // The corner of `polygon` at the start (`at_end` false) or the end of side `s`.
+  auto corner = [&](const Side& s, bool at_end) {
+    const std::size_t n = soup.polygons[s.polygon].size();
+    return first_corner[s.polygon] + (at_end ? (s.corner + 1) % n : s.corner);
+  };
+  Corner_sets fans(first_corner.back());
+  Edge_check result;
   for(std::size_t s = 0; s < sides.size();)
   {
     std::size_t t = s + 1;
     while(t < sides.size() && sides[t].low == sides[s].low && sides[t].high == sides[s].high)
       ++t;
     if(t - s > 2)
-      return edge_name(sides[s]) + " is shared by " + std::to_string(t - s) + " faces (" +
-             soup.describe_polygon(sides[s].polygon) + ", " + soup.describe_polygon(sides[s + 1].polygon) +
-             ", " + soup.describe_polygon(sides[s + 2].polygon) + (t - s > 3 ? ", ..." : "") +
-             "): a non-manifold edge";
-    if(t - s == 2 && sides[s].forward == sides[s + 1].forward)
-      return soup.describe_polygon(sides[s].polygon) + " and " + soup.describe_polygon(sides[s + 1].polygon) +
-             " run along " + edge_name(sides[s]) +
-             " in the same direction: their orientations disagree (the faces are not consistently "
-             "oriented, or the surface is not orientable)";
+    {
+      result.refusal = edge_name(sides[s]) + " is shared by " + std::to_string(t - s) + " faces (" +
+                       soup.describe_polygon(sides[s].polygon) + ", " + soup.describe_polygon(sides[s + 1].polygon) +
+                       ", " + soup.describe_polygon(sides[s + 2].polygon) + (t - s > 3 ? ", ..." : "") +
+                       "): a non-manifold edge";
+      return result;
+    }
+    if(t - s == 2)
+    {
+      if(sides[s].forward == sides[s + 1].forward)
+      {
+        result.refusal = soup.describe_polygon(sides[s].polygon) + " and " +
+                         soup.describe_polygon(sides[s + 1].polygon) + " run along " + edge_name(sides[s]) +
+                         " in the same direction: their orientations disagree (the faces are not consistently "
+                         "oriented, or the surface is not orientable)";
+        return result;
+      }
+      // The two faces run along the edge in opposite directions: the start of one side is
+      // the end of the other, and across the edge the corners there are one fan.
+      fans.join(corner(sides[s], false), corner(sides[s + 1], true));
+      fans.join(corner(sides[s], true), corner(sides[s + 1], false));
+    }
     s = t;
   }
-  return {};
+  std::vector<std::size_t> fan_of(soup.points.size(), first_corner.back());
+  for(std::size_t p = 0; p < soup.polygons.size() && !result.has_singular_vertices; ++p)
+    for(std::size_t c = 0; c < soup.polygons[p].size(); ++c)
+    {
+      std::size_t& fan = fan_of[soup.polygons[p][c]];
+      const std::size_t root = fans.find(first_corner[p] + c);
+      if(fan != first_corner.back() && fan != root)
+        result.has_singular_vertices = true;
+      fan = root;
+    }
+  return result;
 }
 
 /// Refuses a triangle with (relatively) no area: area <= 1e-14 longest edge^2, the test of
@@ -287,7 +347,8 @@ bool polygon_soup_to_triangle_mesh(Polygon_soup& soup, PolygonMesh& mesh, Mesh_r
                                       ? " (" + std::to_string(report.non_triangle_faces) + " faces have more than 3)"
                                       : std::string()));
 
-  std::string why = internal::check_edges(soup, report.file_vertex);
+  const internal::Edge_check edges = internal::check_edges(soup, report.file_vertex);
+  std::string why = edges.refusal;
   if(why.empty() && options.refuse_degenerate_faces)
     why = internal::check_triangle_areas(soup);
   if(!why.empty())
@@ -302,7 +363,8 @@ bool polygon_soup_to_triangle_mesh(Polygon_soup& soup, PolygonMesh& mesh, Mesh_r
   internal::Split_recorder recorder;
   recorder.duplicated = &duplicated;
   recorder.reversed = &reversed;
-  PMP::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(recorder));
+  if(edges.has_singular_vertices)
+    PMP::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(recorder));
   if(reversed)
     return refuse("the faces could not keep their orientation when non-manifold vertices were split");
   for(const auto& [original, copy] : duplicated)
@@ -312,8 +374,9 @@ bool polygon_soup_to_triangle_mesh(Polygon_soup& soup, PolygonMesh& mesh, Mesh_r
     report.file_vertex.push_back(report.file_vertex[original]);
     report.split_vertices.push_back(report.file_vertex[original]);
   }
-  if(!PMP::is_polygon_soup_a_polygon_mesh(soup.polygons))
-    return refuse("the faces do not form a polygon mesh even after splitting non-manifold vertices");
+  // Edges in at most two faces, orientations consistent, one fan per vertex: the soup is a
+  // polygon mesh (polygon_soup_to_polygon_mesh asserts it in debug builds; checking it
+  // again here would cost a fifth of the reading time).
   PMP::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, mesh);
 
   if(report.non_triangle_faces > 0)
