@@ -671,6 +671,25 @@ struct Ply_element
   }
 };
 
+/// Names a value of a PLY body in a message ("face 12, property vertex_indices item 3"),
+/// built only when a message needs it: a body has millions of values.
+struct Ply_value_name
+{
+  const std::string& element;
+  std::size_t index;
+  const std::string& property;
+  const char* part = "";        ///< " (list count)", " item " or ""
+  std::size_t item = 0;         ///< with part " item "
+
+  std::string str() const
+  {
+    std::string s = element + " " + std::to_string(index) + ", property " + property + part;
+    if(std::strcmp(part, " item ") == 0)
+      s += std::to_string(item);
+    return s;
+  }
+};
+
 /// Reads the values of a PLY body, binary or ASCII, with the position for messages.
 class Ply_body
 {
@@ -688,7 +707,7 @@ public:
   std::size_t line() const { return encoding_ == Ply_encoding::Ascii ? lines_.number() : 0; }
 
   /// The next value as a double; `what` names it in a message.
-  double value(const Ply_type& type, const std::string& what)
+  double value(const Ply_type& type, const Ply_value_name& what)
   {
     return encoding_ == Ply_encoding::Ascii ? ascii_value(what) : binary_value(type, what);
   }
@@ -700,26 +719,26 @@ public:
   }
 
 private:
-  double ascii_value(const std::string& what)
+  double ascii_value(const Ply_value_name& what)
   {
     std::string_view t;
     while(!tokens_.next(t))
     {
       std::string_view line;
       if(!lines_.next(line))
-        refuse("the file ends before " + what + " (truncated?)");
+        refuse("the file ends before " + what.str() + " (truncated?)");
       tokens_ = Tokens(line);
     }
     double x = 0;
     if(!parse_double(t, x))
-      refuse(where() + what + ": " + quoted(t) + " is not a number");
+      refuse(where() + what.str() + ": " + quoted(t) + " is not a number");
     return x;
   }
 
-  double binary_value(const Ply_type& type, const std::string& what)
+  double binary_value(const Ply_type& type, const Ply_value_name& what)
   {
     if(body_.size() - offset_ < type.size)
-      refuse("the file ends inside " + what + " (truncated?)");
+      refuse("the file ends inside " + what.str() + " (truncated?)");
     unsigned char b[8];
     std::memcpy(b, body_.data() + offset_, type.size);
     offset_ += type.size;
@@ -761,10 +780,10 @@ private:
 };
 
 /// A list's count or an index: an integral, non-negative value.
-inline std::size_t ply_index(double x, Ply_body& body, const std::string& what)
+inline std::size_t ply_index(double x, Ply_body& body, const Ply_value_name& what)
 {
   if(!(x >= 0) || x != std::floor(x) || x > 4294967295.0)
-    refuse(body.where() + what + " is " + (std::isfinite(x) ? std::to_string(x) : std::string("not finite")) +
+    refuse(body.where() + what.str() + " is " + (std::isfinite(x) ? std::to_string(x) : std::string("not finite")) +
            ", not a non-negative integer");
   return static_cast<std::size_t>(x);
 }
@@ -901,7 +920,7 @@ inline void read_ply(std::string_view text, Polygon_soup& soup, const Soup_readi
       for(std::size_t pi = 0; pi < e.properties.size(); ++pi)
       {
         const Ply_property& p = e.properties[pi];
-        const std::string what = e.name + " " + std::to_string(i) + ", property " + p.name;
+        const Ply_value_name what{e.name, i, p.name};
         if(!p.is_list)
         {
           const double value = body.value(p.type, what);
@@ -915,13 +934,13 @@ inline void read_ply(std::string_view text, Polygon_soup& soup, const Soup_readi
               }
           continue;
         }
-        const std::size_t count = ply_index(body.value(p.count_type, what + " (list count)"), body,
-                                            what + " (list count)");
+        const Ply_value_name count_name{e.name, i, p.name, " (list count)"};
+        const std::size_t count = ply_index(body.value(p.count_type, count_name), body, count_name);
         const bool is_face_list = &e == face && static_cast<int>(pi) == indices;
         // Each item takes at least its size (binary) or two bytes (ASCII).
         const std::size_t item_bytes = *encoding == Ply_encoding::Ascii ? 2 : p.type.size;
         if(count > body.remaining_bytes() / item_bytes)
-          refuse(body.where() + what + ": a list of " + std::to_string(count) +
+          refuse(body.where() + what.str() + ": a list of " + std::to_string(count) +
                  " items runs past the end of the file");
         if(is_face_list)
         {
@@ -935,10 +954,11 @@ inline void read_ply(std::string_view text, Polygon_soup& soup, const Soup_readi
         }
         for(std::size_t c = 0; c < count; ++c)
         {
-          const double item = body.value(p.type, what + " item " + std::to_string(c));
+          const Ply_value_name item_name{e.name, i, p.name, " item ", c};
+          const double item = body.value(p.type, item_name);
           if(!is_face_list)
             continue;
-          const std::size_t index = ply_index(item, body, "face " + std::to_string(i) + " corner " + std::to_string(c));
+          const std::size_t index = ply_index(item, body, item_name);
           if(index >= vertex->count)
             refuse(body.where() + "face " + std::to_string(i) + ": vertex index " + std::to_string(index) +
                    " is out of range (the file has " + std::to_string(vertex->count) + " vertices)");
