@@ -45,6 +45,8 @@
 #include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 
+#include <nlohmann/json.hpp>
+
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -77,6 +79,8 @@ namespace {
 
 namespace SMP = CGAL::Surface_mesh_parameterization;
 namespace PMP = CGAL::Polygon_mesh_processing;
+// Keys stay in the order they are set, as the JSON lines always listed them.
+using Json = nlohmann::ordered_json;
 
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point_2 = Kernel::Point_2;
@@ -395,7 +399,7 @@ struct Row {
   std::string topology;  // "genus G, B loops", shown in the Markdown model label
   std::string detail;    // shown in parentheses after the method in Markdown (e.g. the cut)
   std::string note;      // appended to the Markdown status (e.g. ICM's stage times)
-  std::vector<std::pair<std::string, std::string>> json_extra;  // key, JSON value
+  std::vector<std::pair<std::string, Json>> json_extra;  // key, value
 };
 
 // What one child process sends back through its pipe: "key value" lines.
@@ -990,37 +994,24 @@ Job seam_job(const Mesh& input, const std::vector<std::size_t>& seams, const Sea
 // Output
 // ------------------------------------------------------------------------------------------
 
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
-      case '\r': o += "\\r"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          o += buf;
-        } else {
-          o += static_cast<char>(c);
-        }
-    }
-  }
-  return o;
-}
-
-std::string json_num(double x) {
-  if (!std::isfinite(x)) return "null";
+// A measured number in JSON: 10 significant digits (as the Markdown and the previous JSON
+// lines gave them), null when not finite.
+Json json_num(double x) {
+  if (!std::isfinite(x)) return nullptr;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
+  return std::strtod(buf, nullptr);
 }
 
-std::string json_count(double x) {
-  if (!std::isfinite(x)) return "null";
+// A count in JSON: an integer, null when not finite.
+Json json_count(double x) {
+  if (!std::isfinite(x)) return nullptr;
+  return static_cast<long long>(std::llround(x));
+}
+
+// A count in the Markdown: digits, empty when not finite.
+std::string count_text(double x) {
+  if (!std::isfinite(x)) return "";
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.0f", x);
   return buf;
@@ -1029,29 +1020,29 @@ std::string json_count(double x) {
 void print_json(const Row& r, std::ostream& out = std::cout) {
   const Measures& m = r.m;
   const bool h = r.has_measures;
-  std::ostringstream o;
-  o << "{\"mesh\": \"" << json_escape(r.mesh) << "\", \"vertices\": " << r.vertices
-    << ", \"faces\": " << r.faces << ", \"method\": \"" << json_escape(r.method)
-    << "\", \"status\": \"" << json_escape(r.status) << "\""
-    << ", \"seconds\": " << json_num(r.seconds)
-    << ", \"peak_rss_mb\": " << json_num(r.peak_rss_mb)
-    << ", \"flipped\": " << (h ? json_count(m.flipped) : "null")
-    << ", \"degenerate\": " << (h ? json_count(m.degenerate) : "null")
-    << ", \"conformality\": " << (h ? json_num(m.conformality) : "null")
-    << ", \"angle_distortion\": " << (h ? json_num(m.angle_distortion) : "null")
-    << ", \"l2_shear\": " << (h ? json_num(m.l2_shear) : "null")
-    << ", \"l2_stretch\": " << (h ? json_num(m.l2_stretch) : "null")
-    << ", \"log_area_distortion\": " << (h ? json_num(m.log_area_distortion) : "null")
-    << ", \"qc_mean\": " << (h ? json_num(m.qc_mean) : "null")
-    << ", \"qc_max\": " << (h ? json_num(m.qc_max) : "null")
-    << ", \"area_ratio_min\": " << (h ? json_num(m.area_ratio_min) : "null")
-    << ", \"area_ratio_max\": " << (h ? json_num(m.area_ratio_max) : "null")
-    << ", \"newton_iterations\": "
-    << (r.newton_iterations ? std::to_string(*r.newton_iterations) : std::string("null"))
-    << ", \"metric\": " << (r.metric.empty() ? std::string("null") : "\"" + r.metric + "\"");
-  for (const auto& [key, value] : r.json_extra) o << ", \"" << json_escape(key) << "\": " << value;
-  o << "}\n";
-  out << o.str() << std::flush;
+  Json o;
+  o["mesh"] = r.mesh;
+  o["vertices"] = r.vertices;
+  o["faces"] = r.faces;
+  o["method"] = r.method;
+  o["status"] = r.status;
+  o["seconds"] = json_num(r.seconds);
+  o["peak_rss_mb"] = json_num(r.peak_rss_mb);
+  o["flipped"] = h ? json_count(m.flipped) : Json();
+  o["degenerate"] = h ? json_count(m.degenerate) : Json();
+  o["conformality"] = h ? json_num(m.conformality) : Json();
+  o["angle_distortion"] = h ? json_num(m.angle_distortion) : Json();
+  o["l2_shear"] = h ? json_num(m.l2_shear) : Json();
+  o["l2_stretch"] = h ? json_num(m.l2_stretch) : Json();
+  o["log_area_distortion"] = h ? json_num(m.log_area_distortion) : Json();
+  o["qc_mean"] = h ? json_num(m.qc_mean) : Json();
+  o["qc_max"] = h ? json_num(m.qc_max) : Json();
+  o["area_ratio_min"] = h ? json_num(m.area_ratio_min) : Json();
+  o["area_ratio_max"] = h ? json_num(m.area_ratio_max) : Json();
+  o["newton_iterations"] = r.newton_iterations ? Json(*r.newton_iterations) : Json();
+  o["metric"] = r.metric.empty() ? Json() : Json(r.metric);
+  for (const auto& [key, value] : r.json_extra) o[key] = value;
+  out << o.dump(-1, ' ', false, Json::error_handler_t::replace) << "\n" << std::flush;
 }
 
 // Fixed decimals as in the paper's table, switching to scientific notation when that would
@@ -1112,7 +1103,7 @@ void print_markdown_row(const Row& r, bool first) {
     << cell(m.l2_shear, 4) << " | " << cell(m.l2_stretch, 4) << " | "
     << cell(m.log_area_distortion, 5) << " | "
     << fmt_seconds(r.seconds) << " | "
-    << (h ? json_count(m.flipped) : "") << " | " << cell(m.qc_mean, 4) << " | "
+    << (h ? count_text(m.flipped) : "") << " | " << cell(m.qc_mean, 4) << " | "
     << cell(m.qc_max, 3) << " | "
     << (std::isfinite(r.peak_rss_mb) ? fmt_fixed(r.peak_rss_mb, 1) : "") << " | "
     << (r.newton_iterations ? std::to_string(*r.newton_iterations) : "") << " | "
@@ -1226,7 +1217,7 @@ void add_icm_report(Row& row, const Child_result& result) {
                 fmt_seconds(x("seconds_cut")).c_str(), fmt_seconds(x("seconds_layout")).c_str());
   row.note = buf;
   if (x("border_crossings") > 0)
-    row.note += "; " + json_count(x("border_crossings")) + " border crossings";
+    row.note += "; " + count_text(x("border_crossings")) + " border crossings";
 }
 
 // Default rows of a mesh that is not a disk: ICM's one call, CGAL's methods on its cut and,
@@ -1242,9 +1233,12 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
                  const std::vector<Seam_method>& seam_registry) {
   std::vector<std::string> names = asked.empty() ? surface_names(topology) : asked;
   base.topology = topology.description();
-  base.json_extra = {{"components", std::to_string(topology.components)},
-                     {"genus", topology.components == 1 ? topology.genus() : "null"},
-                     {"loops", std::to_string(topology.loops)}};
+  const std::string genus = topology.genus();  // "?" when 2g is odd (a non-orientable cut)
+  base.json_extra = {{"components", topology.components},
+                     {"genus", topology.components != 1 ? Json()
+                               : genus == "?"           ? Json(genus)
+                                                        : Json(std::stol(genus))},
+                     {"loops", topology.loops}};
   const bool connected = topology.components == 1;
   auto seam_method = [&](const std::string& name) -> const Seam_method* {
     for (const Seam_method& m : seam_registry)
@@ -1339,8 +1333,8 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
         progress(name);
         row = run_job(seam_job(mesh, cut, *m), name, opt, base);
         row.detail = "cut: " + cut_name;
-        row.json_extra.emplace_back("cut", "\"" + cut_name + "\"");
-        row.json_extra.emplace_back("cut_seam_edges", std::to_string(cut.size()));
+        row.json_extra.emplace_back("cut", cut_name);
+        row.json_extra.emplace_back("cut_seam_edges", cut.size());
         progress_done(row);
       }
     } else if (name == "icm_free_boundary_opened") {
@@ -1363,15 +1357,14 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
           progress(name);
           Child_result result;
           row = run_job(method_job(opened, *method), name, opt, base, &result);
-          row.json_extra.emplace_back("opened_vertices", std::to_string(num_vertices(opened)));
-          row.json_extra.emplace_back("opened_faces", std::to_string(num_faces(opened)));
+          row.json_extra.emplace_back("opened_vertices", num_vertices(opened));
+          row.json_extra.emplace_back("opened_faces", num_faces(opened));
           // The parameterizer's report: its stage times and why it fell back, if it did.
           for (const auto& [key, value] : result.extra)
             row.json_extra.emplace_back(key, json_num(value));
-          row.json_extra.emplace_back(
-              "fallback_reason", result.fallback_reason.empty()
-                                     ? std::string("null")
-                                     : "\"" + json_escape(result.fallback_reason) + "\"");
+          row.json_extra.emplace_back("fallback_reason", result.fallback_reason.empty()
+                                                             ? Json()
+                                                             : Json(result.fallback_reason));
           row.note = "opened: " + std::to_string(num_faces(opened)) + " faces";
           if (!result.extra.empty() && row.status == "ok") {
             auto x = [&](const char* key) { return fmt_seconds(extra_value(result, key)); };

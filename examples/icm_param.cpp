@@ -2,238 +2,488 @@
 // seams where its topology needs them, one chart per connected component) and write the UV'd
 // OBJ (a vt per corner side of every seam), optionally an SVG of the layout and a JSON line.
 //
-//   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json]
+//   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
-//             [--keep-overlaps]
+//             [--keep-overlaps]          (icm_param --help for all)
 //
-// On any failure it prints one line on stderr naming the reason, exits non-zero and writes
-// no file (outputs are written to a temporary file and renamed into place).
+// The input is untrusted: it is read by ICM's own checked readers (IO/read_polygon_soup.h),
+// repaired only as users expect (isolated vertices dropped, non-manifold vertices split,
+// polygons triangulated with --triangulate), and everything else refused with the reason.
+// On any failure it prints one line on stderr naming the reason (and with --json a JSON error
+// object on stdout), exits non-zero and changes no file: the OBJ and the SVG are written to
+// temporary files and renamed into place together, only when both were written.
 
+#include <ICM/Circle_packing_metric.h>
 #include <ICM/Distortion.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
+#include <ICM/Inversive_distance_metric.h>
+#include <ICM/Vertex_scaling_metric.h>
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/read_seam_selection.h>
-#include <ICM/IO/write_uv_obj.h>
-#include <ICM/IO/write_uv_svg.h>
-#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/IO/read_triangle_mesh.h>
+#include <ICM/IO/write_uv_files.h>
 #include <ICM/parameterize.h>
 
-#include <CGAL/Polygon_mesh_processing/border.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_parameterization/parameterize.h>
-#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/version.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <iostream>
 #include <map>
+#include <new>
+#include <string>
 #include <utility>
 #include <vector>
-#include <cmath>
-#include <cstdio>
-#include <iostream>
-#include <sstream>
-#include <string>
+
+#ifndef _WIN32
+#  include <unistd.h>
+#endif
+
+#ifndef ICM_VERSION
+#  define ICM_VERSION "unknown"
+#endif
 
 namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace SMP = CGAL::Surface_mesh_parameterization;
-namespace PMP = CGAL::Polygon_mesh_processing;
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+/// Meshes from this size get a progress line on stderr (a run takes seconds from there).
+constexpr std::size_t progress_min_faces = 100000;
 
 struct Arguments
 {
   std::string input, output, svg, seams;
-  bool json = false, keep_overlaps = false;
+  bool json = false, keep_overlaps = false, triangulate = false, quiet = false;
   std::string metric = ICM::Default_metric::name;
-  int max_cones = -1;                     // -1: automatic
+  int max_cones = -1;                        // -1: automatic
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
 };
 
 const char* const usage =
-  "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] "
-  "[--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing] "
-  "[--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n";
+  "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]\n"
+  "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
+  "         [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n"
+  "       icm_param --help | --version\n";
 
-int fail(const std::string& reason, int code = 1)
+std::string version_text()
 {
-  std::cerr << "icm_param: " << reason << "\n";
+  return std::string("icm_param ") + ICM_VERSION + " (CGAL " + CGAL_VERSION_STR + ", Eigen " +
+         std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+         std::to_string(EIGEN_MINOR_VERSION) +
+#ifdef ICM_HAS_CHOLMOD
+         ", CHOLMOD"
+#else
+         ", without CHOLMOD"
+#endif
+         + ")";
+}
+
+/// How a failure is told: one line on stderr, and with --json a JSON object on stdout.
+class Failure_report
+{
+public:
+  bool json = false;
+  std::string input, output;
+
+  int operator()(const std::string& reason, int exit_code = 1) const
+  {
+    std::cerr << "icm_param: " << reason << "\n";
+    if(json)
+    {
+      Json error;
+      error["error"] = reason;
+      error["exit_code"] = exit_code;
+      error["input"] = input;
+      error["output"] = output;
+      std::cout << error.dump(-1, ' ', false, Json::error_handler_t::replace) << "\n";
+    }
+    return exit_code;
+  }
+};
+
+// --- the command line ------------------------------------------------------------------
+
+/// `--cones auto|N`: -1 for auto, else the count.
+CLI::Validator cone_count_validator()
+{
+  return CLI::Validator(
+    [](std::string& v) -> std::string {
+      if(v == "auto")
+        return {};
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if(v.empty() || *end != '\0' || n < 0 || n > 100000)
+        return "takes 'auto' or a count from 0 to 100000, not '" + v + "'";
+      return {};
+    },
+    "");
+}
+
+/// `--cone VERTEX:DEGREES`, parsed into `cone`.
+bool parse_cone(const std::string& v, std::pair<int, double>& cone)
+{
+  const std::size_t colon = v.find(':');
+  if(colon == std::string::npos)
+    return false;
+  char *end_vertex = nullptr, *end_angle = nullptr;
+  const long vertex = std::strtol(v.c_str(), &end_vertex, 10);
+  const double degrees = std::strtod(v.c_str() + colon + 1, &end_angle);
+  if(end_vertex != v.c_str() + colon || colon == 0 || vertex < 0 || vertex > 2147483647L ||
+     *end_angle != '\0' || !(degrees > 0) || !std::isfinite(degrees))
+    return false;
+  cone = {static_cast<int>(vertex), degrees};
+  return true;
+}
+
+CLI::Validator cone_validator()
+{
+  return CLI::Validator(
+    [](std::string& v) -> std::string {
+      std::pair<int, double> cone;
+      return parse_cone(v, cone) ? std::string()
+                                 : "takes VERTEX:DEGREES with a vertex index >= 0 and an angle > 0, not '" + v + "'";
+    },
+    "");
+}
+
+/// A wrong command line: the reason, then the usage; exit code 2.
+int usage_error(const std::string& reason, const Failure_report& fail)
+{
+  const int code = fail(reason, 2);
+  std::cerr << usage;
   return code;
 }
 
-bool parse_arguments(int argc, char** argv, Arguments& args, std::string& error)
+/// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
+/// --help or --version, 2 on a usage error, which `fail` has reported).
+int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report& fail)
 {
-  for(int i = 1; i < argc; ++i)
+  CLI::App app("Conformal parameterization with least area distortion by the inverse curvature map:\n"
+               "reads a mesh (OFF, OBJ, PLY or STL), writes an OBJ with one vt per corner side of\n"
+               "every seam. Output vertices are the input's in file order, without isolated ones,\n"
+               "then one copy per extra fan of each split non-manifold vertex.",
+               "icm_param");
+  app.set_version_flag("--version", version_text());
+  app.allow_extras(); // unknown options are reported below, by name
+  std::string cones_text;
+  std::vector<std::string> cone_texts;
+  app.add_option("input", args.input, "mesh file: .off (and COFF, NOFF, STOFF, 4OFF), .obj, .ply, .stl")
+    ->required()
+    ->type_name("INPUT");
+  app.add_option("-o,--output", args.output, "the UV'd OBJ to write")->required()->type_name("OUTPUT.obj");
+  app.add_option("--svg", args.svg, "also write an SVG of the layout, faces coloured by log area ratio")
+    ->type_name("FILE");
+  app.add_flag("--json", args.json, "print the figures as one JSON line on stdout (a JSON error object on failure)");
+  app.add_option("--metric", args.metric, "the discrete conformal metric (default " + args.metric + ")")
+    ->check(CLI::IsMember({ICM::Intrinsic_delaunay_metric::name, ICM::Vertex_scaling_metric::name,
+                           ICM::Inversive_distance_metric::name, ICM::Circle_packing_metric::name}))
+    ->type_name("NAME");
+  app.add_option("--cones", cones_text, "automatic interior cones: 'auto' (default) or at most N, 0 for none")
+    ->check(cone_count_validator())
+    ->type_name("auto|N");
+  app.add_option("--cone", cone_texts, "a cone of DEGREES at the input's VERTEX (repeatable)")
+    ->check(cone_validator())
+    ->type_name("VERTEX:DEGREES");
+  app.add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
+    ->type_name("FILE");
+  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps)");
+  app.add_flag("--triangulate", args.triangulate, "triangulate polygons (otherwise they are refused)");
+  app.add_flag("-q,--quiet", args.quiet, "no progress line on stderr for large meshes");
+  try
   {
-    const std::string a = argv[i];
-    auto value = [&](std::string& out) {
-      if(i + 1 >= argc)
-      {
-        error = a + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    if(a == "-o" || a == "--output")
-    {
-      if(!value(args.output))
-        return false;
-    }
-    else if(a == "--svg")
-    {
-      if(!value(args.svg))
-        return false;
-    }
-    else if(a == "--seams")
-    {
-      if(!value(args.seams))
-        return false;
-    }
-    else if(a == "--json")
-      args.json = true;
-    else if(a == "--keep-overlaps")
-      args.keep_overlaps = true;
-    else if(a == "--cones")
-    {
-      std::string v;
-      if(!value(v))
-        return false;
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if(v == "auto")
-        args.max_cones = -1;
-      else if(!v.empty() && *end == '\0' && n >= 0 && n <= 100000)
-        args.max_cones = static_cast<int>(n);
-      else
-      {
-        error = "--cones takes 'auto' or a count, not '" + v + "'";
-        return false;
-      }
-    }
-    else if(a == "--cone")
-    {
-      std::string v;
-      if(!value(v))
-        return false;
-      const std::size_t colon = v.find(':');
-      char *end_vertex = nullptr, *end_angle = nullptr;
-      const long vertex = colon == std::string::npos ? -1 : std::strtol(v.c_str(), &end_vertex, 10);
-      const double degrees = colon == std::string::npos ? 0 : std::strtod(v.c_str() + colon + 1, &end_angle);
-      if(colon == std::string::npos || end_vertex != v.c_str() + colon || vertex < 0 ||
-         *end_angle != '\0' || !(degrees > 0) || !std::isfinite(degrees))
-      {
-        error = "--cone takes VERTEX:DEGREES with a vertex index >= 0 and an angle > 0, not '" + v + "'";
-        return false;
-      }
-      args.cones.push_back({static_cast<int>(vertex), degrees});
-    }
-    else if(a == "--metric")
-    {
-      if(!value(args.metric))
-        return false;
-      if(args.metric != ICM::Intrinsic_delaunay_metric::name &&
-         args.metric != ICM::Vertex_scaling_metric::name &&
-         args.metric != ICM::Inversive_distance_metric::name &&
-         args.metric != ICM::Circle_packing_metric::name)
-      {
-        error = "unknown metric '" + args.metric +
-                "' (intrinsic-delaunay, vertex-scaling, inversive-distance or circle-packing)";
-        return false;
-      }
-    }
-    else if(!a.empty() && a[0] == '-')
-    {
-      error = "unknown option " + a;
-      return false;
-    }
-    else if(args.input.empty())
-      args.input = a;
-    else
-    {
-      error = "more than one input file";
-      return false;
-    }
+    app.parse(argc, argv);
   }
-  if(args.input.empty())
-    error = "no input file";
-  else if(args.output.empty())
-    error = "no output file (-o OUTPUT.obj)";
-  return error.empty();
+  catch(const CLI::CallForHelp& e)
+  {
+    return app.exit(e);
+  }
+  catch(const CLI::CallForAllHelp& e)
+  {
+    return app.exit(e);
+  }
+  catch(const CLI::CallForVersion& e)
+  {
+    return app.exit(e);
+  }
+  catch(const CLI::RequiredError&)
+  {
+    return usage_error(args.input.empty() ? "no input file" : "no output file (-o OUTPUT.obj)", fail);
+  }
+  catch(const CLI::ParseError& e)
+  {
+    return usage_error(e.what(), fail);
+  }
+  for(const std::string& extra : app.remaining())
+    return usage_error(!extra.empty() && extra[0] == '-' ? "unknown option " + extra
+                                                         : "more than one input file ('" + extra + "')",
+                       fail);
+  if(!cones_text.empty() && cones_text != "auto")
+    args.max_cones = std::atoi(cones_text.c_str());
+  for(const std::string& text : cone_texts)
+  {
+    std::pair<int, double> cone;
+    parse_cone(text, cone);
+    args.cones.push_back(cone);
+  }
+  return -1;
 }
 
-/// The reason the tool cannot take this mesh, or empty.
-std::string check_input(const Mesh& mesh)
+// --- checks before any work ------------------------------------------------------------
+
+/// Why the outputs cannot be written, found before hours of work rather than after: two
+/// outputs on one file, an output over an input, a read-only target, a missing directory.
+std::string check_output_paths(const Arguments& args)
 {
-  if(faces(mesh).empty())
-    return "the mesh has no faces";
-  if(!CGAL::is_triangle_mesh(mesh))
-    return "the mesh has non-triangle faces (triangulate it first)";
+  std::vector<std::pair<std::string, std::string>> outputs = {{"-o", args.output}};
+  if(!args.svg.empty())
+    outputs.push_back({"--svg", args.svg});
+  if(outputs.size() == 2 && ICM::internal::same_file(args.output, args.svg))
+    return "-o and --svg name the same file '" + args.output + "'";
+  for(const auto& [option, path] : outputs)
+  {
+    if(ICM::internal::same_file(path, args.input))
+      return option + " names the input file '" + path + "'";
+    if(!args.seams.empty() && ICM::internal::same_file(path, args.seams))
+      return option + " names the seam file '" + path + "'";
+    const std::string refusal = ICM::internal::replace_refusal(path);
+    if(!refusal.empty())
+      return "cannot write '" + path + "': " + refusal;
+    const fs::path directory = fs::path(path).parent_path();
+    std::error_code ec;
+    if(!directory.empty() && !fs::is_directory(directory, ec))
+      return "cannot write '" + path + "': the directory '" + directory.string() + "' does not exist";
+  }
   return {};
 }
 
-std::string json_number(double x)
+// --- input -----------------------------------------------------------------------------
+
+/// The vertices of `mesh` that each of the input file's vertex indices names (none for a
+/// dropped isolated vertex, several for a split non-manifold one).
+std::vector<std::vector<Mesh::Vertex_index>> vertices_by_file_index(const Mesh& mesh,
+                                                                    const ICM::IO::Mesh_reading_report& read)
 {
-  if(!std::isfinite(x))
-    return "null";
-  std::ostringstream out;
-  out.precision(10);
-  out << x;
-  return out.str();
+  std::vector<std::vector<Mesh::Vertex_index>> by_index(read.file_vertices);
+  std::size_t i = 0;
+  for(Mesh::Vertex_index v : vertices(mesh))
+    by_index[read.file_vertex[i++]].push_back(v);
+  return by_index;
 }
 
-std::string json_string(const std::string& s)
+/// The user's cones as curvatures at vertices of the mesh; empty `error` on success.
+std::map<Mesh::Vertex_index, double> user_cones(const Arguments& args,
+                                                const std::vector<std::vector<Mesh::Vertex_index>>& by_index,
+                                                std::string& error)
 {
-  std::string out = "\"";
-  for(char c : s)
+  std::map<Mesh::Vertex_index, double> cones;
+  for(const auto& [vertex, degrees] : args.cones)
   {
-    if(c == '"' || c == '\\')
-      out += '\\';
-    if(static_cast<unsigned char>(c) < 0x20)
-      continue;
-    out += c;
+    const std::string option = "--cone " + std::to_string(vertex) + ": ";
+    if(static_cast<std::size_t>(vertex) >= by_index.size())
+      error = option + "the mesh has " + std::to_string(by_index.size()) + " vertices";
+    else if(by_index[vertex].empty())
+      error = option + "vertex " + std::to_string(vertex) + " is in no face (it was dropped)";
+    else if(by_index[vertex].size() > 1)
+      error = option + "vertex " + std::to_string(vertex) + " is non-manifold and was split into " +
+              std::to_string(by_index[vertex].size()) + " vertices";
+    if(!error.empty())
+      return {};
+    cones[by_index[vertex].front()] = 2 * M_PI - degrees * M_PI / 180;
   }
-  return out + "\"";
+  return cones;
 }
 
-} // namespace
+// --- progress --------------------------------------------------------------------------
 
-int main(int argc, char** argv)
+/// "icm_param: optimum 42%" on stderr, rewritten in place on a terminal.
+class Progress_line
+{
+public:
+  explicit Progress_line(bool shown) : shown_(shown)
+  {
+#ifndef _WIN32
+    terminal_ = ::isatty(2) != 0;
+#endif
+  }
+  void operator()(const std::string& stage, double fraction)
+  {
+    if(!shown_)
+      return;
+    const int percent = static_cast<int>(std::floor(100 * std::clamp(fraction, 0.0, 1.0)));
+    std::cerr << (terminal_ ? "\r" : "") << "icm_param: " << stage << " " << percent << "%"
+              << (terminal_ ? "\x1b[K" : "\n") << std::flush;
+    open_ = terminal_;
+  }
+  /// Ends the line on a terminal, so that what follows starts on its own.
+  void finish()
+  {
+    if(open_)
+      std::cerr << "\n";
+    open_ = false;
+  }
+
+private:
+  bool shown_, terminal_ = false, open_ = false;
+};
+
+// --- output ----------------------------------------------------------------------------
+
+/// Totals over the charts, and the worst of each check.
+struct Chart_totals
+{
+  int cones = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, raw_overlaps = 0, pieces = 0, moved = 0;
+  double curvature_error = 0, length_error = 0, seam_error = 0;
+  std::string metrics, fallbacks;
+
+  explicit Chart_totals(const ICM::Surface_parameterization_report& report)
+  {
+    for(const ICM::Chart_report& c : report.charts)
+    {
+      cones += static_cast<int>(c.cones.size());
+      genus += c.genus;
+      loops += c.boundary_loops;
+      newton = std::max(newton, c.newton_iterations);
+      overlaps += c.overlapping_border_edges;
+      raw_overlaps += c.raw_overlapping_border_edges;
+      pieces += c.pieces;
+      moved += c.moved_vertices;
+      curvature_error = std::max(curvature_error, c.max_curvature_error);
+      length_error = std::max(length_error, c.max_layout_length_error);
+      seam_error = std::max(seam_error, c.seam_length_error);
+      if(metrics.find(c.metric) == std::string::npos)
+        metrics += (metrics.empty() ? "" : ",") + c.metric;
+      if(!c.fallback_reason.empty() && fallbacks.empty())
+        fallbacks = c.fallback_reason;
+    }
+  }
+};
+
+struct Timings
+{
+  double read = 0, write = 0, total = 0;
+};
+
+Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_reading_report& read,
+                  const ICM::Surface_parameterization_report& report, std::size_t seam_edges,
+                  const ICM::Distortion_measures& measures, const Timings& seconds)
+{
+  const Chart_totals t(report);
+  Json j;
+  j["input"] = args.input;
+  j["output"] = args.output;
+  j["vertices"] = num_vertices(mesh);
+  j["faces"] = num_faces(mesh);
+  j["charts"] = t.pieces;
+  j["components"] = report.charts.size();
+  j["boundary_loops"] = t.loops;
+  j["genus"] = t.genus;
+  j["cones"] = t.cones;
+  j["seam_edges"] = seam_edges;
+  j["layout"] = "propagation";
+  j["newton_iterations"] = t.newton;
+  j["max_curvature_error"] = t.curvature_error;
+  j["max_layout_length_error"] = t.length_error;
+  j["seam_length_error"] = t.seam_error;
+  j["overlapping_border_edges"] = t.overlaps;
+  j["raw_overlapping_border_edges"] = t.raw_overlaps;
+  j["moved_vertices"] = t.moved;
+  j["metric"] = t.metrics;
+  j["metric_fallback"] = t.fallbacks;
+  j["flipped_faces"] = measures.flipped_faces;
+  j["log_area_distortion"] = measures.log_area_distortion;
+  j["area_ratio_min"] = measures.area_ratio_min;
+  j["area_ratio_max"] = measures.area_ratio_max;
+  j["qc_mean"] = measures.qc_mean;
+  j["isolated_vertices_dropped"] = read.isolated_vertices.size();
+  j["vertices_split"] = read.split_vertices.size();
+  j["faces_triangulated"] = read.triangulated_faces;
+  j["repairs"] = read.repairs();
+  j["seconds_read"] = seconds.read;
+  j["seconds_cones"] = report.seconds_cones;
+  j["seconds_optimum"] = report.seconds_optimum;
+  j["seconds_cut"] = report.seconds_cut;
+  j["seconds_layout"] = report.seconds_layout;
+  j["seconds_parameterize"] = report.seconds_total;
+  j["seconds_write"] = seconds.write;
+  j["seconds_total"] = seconds.total;
+  return j;
+}
+
+void print_summary_line(const Arguments& args, const Mesh& mesh, const ICM::Surface_parameterization_report& report,
+                        std::size_t seam_edges, const ICM::Distortion_measures& measures)
+{
+  const Chart_totals t(report);
+  std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
+            << report.charts.size() << " chart(s), " << t.cones << " cones, " << seam_edges
+            << " seam edges, " << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", "
+            << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion
+            << ", " << report.seconds_total << " s -> " << args.output << "\n";
+}
+
+// --- the run ---------------------------------------------------------------------------
+
+template <class Metric>
+ICM::Surface_parameterization_report run_metric(const Mesh& mesh, Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2> uv,
+                                                const ICM::Surface_parameterization_options& options,
+                                                const std::map<Mesh::Vertex_index, double>& cones,
+                                                std::vector<Mesh::Edge_index>& seams,
+                                                const std::vector<Mesh::Edge_index>& user_seams)
+{
+  return ICM::parameterize<Metric>(mesh, uv, options, cones, &seams, user_seams);
+}
+
+int run(const Arguments& args, const Failure_report& fail)
 {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
-  auto since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  Timings seconds;
 
-  Arguments args;
-  std::string error;
-  if(!parse_arguments(argc, argv, args, error))
-  {
-    std::cerr << usage;
-    return fail(error, 2);
-  }
+  const std::string bad_output = check_output_paths(args);
+  if(!bad_output.empty())
+    return fail(bad_output);
 
   Clock::time_point t = Clock::now();
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(args.input, mesh))
-    return fail("cannot read '" + args.input +
-                "' as a polygon mesh (missing, unreadable, unsupported format or non-manifold)");
-  const double seconds_read = since(t);
-  for(Mesh::Vertex_index v : vertices(mesh))
-  {
-    const Kernel::Point_3& p = mesh.point(v);
-    if(!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
-      return fail("vertex " + std::to_string(std::size_t(v)) +
-                  " has a non-finite coordinate (NaN or inf)");
-  }
-  const std::string unsupported = check_input(mesh);
-  if(!unsupported.empty())
-    return fail(unsupported);
+  ICM::IO::Mesh_reading_options reading;
+  reading.triangulate = args.triangulate;
+  ICM::IO::Mesh_reading_report read;
+  if(!ICM::IO::read_triangle_mesh(args.input, mesh, read, reading))
+    return fail(read.message + (read.non_triangle_faces > 0 && !args.triangulate
+                                  ? " (--triangulate splits them)"
+                                  : ""));
+  seconds.read = since(t);
+  // From here on a failure also says what was repaired: it may be why (a dropped vertex).
+  std::string repairs;
+  for(const std::string& repair : read.repairs())
+    repairs += (repairs.empty() ? " (the input was repaired: " : "; ") + repair;
+  if(!repairs.empty())
+    repairs += ")";
+  auto fail_after_reading = [&](const std::string& reason) { return fail(reason + repairs); };
+
+  const std::vector<std::vector<Mesh::Vertex_index>> by_index = vertices_by_file_index(mesh, read);
+  std::string error;
+  const std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
+  if(!error.empty())
+    return fail_after_reading(error);
+  std::vector<Mesh::Edge_index> user_seams;
+  if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, by_index, user_seams, error))
+    return fail_after_reading(error);
 
   ICM::Surface_parameterization_options options;
   options.remove_overlaps = !args.keep_overlaps;
@@ -243,106 +493,69 @@ int main(int argc, char** argv)
     options.cones.max_cones = args.max_cones;
     options.initial_cones = std::min(options.initial_cones, args.max_cones);
   }
-  std::map<Mesh::Vertex_index, double> cones;
-  for(const auto& [vertex, degrees] : args.cones)
-  {
-    if(static_cast<std::size_t>(vertex) >= num_vertices(mesh))
-      return fail("--cone " + std::to_string(vertex) + ": the mesh has " +
-                  std::to_string(num_vertices(mesh)) + " vertices");
-    cones[Mesh::Vertex_index(static_cast<Mesh::size_type>(vertex))] = 2 * M_PI - degrees * M_PI / 180;
-  }
-  std::vector<Mesh::Edge_index> user_seams;
-  if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, user_seams, error))
-    return fail(error);
+  Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
+  options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
+
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
   std::vector<Mesh::Edge_index> seams;
-  ICM::Surface_parameterization_report report;
-  auto run = [&](auto metric) {
-    return ICM::parameterize<decltype(metric)>(mesh, uvmap, options, cones, &seams, user_seams);
-  };
-  report = args.metric == ICM::Circle_packing_metric::name      ? run(ICM::Circle_packing_metric())
-           : args.metric == ICM::Inversive_distance_metric::name ? run(ICM::Inversive_distance_metric())
-           : args.metric == ICM::Vertex_scaling_metric::name     ? run(ICM::Vertex_scaling_metric())
-                                                                 : run(ICM::Intrinsic_delaunay_metric());
+  const ICM::Surface_parameterization_report report =
+    args.metric == ICM::Circle_packing_metric::name
+      ? run_metric<ICM::Circle_packing_metric>(mesh, uvmap, options, cones, seams, user_seams)
+    : args.metric == ICM::Inversive_distance_metric::name
+      ? run_metric<ICM::Inversive_distance_metric>(mesh, uvmap, options, cones, seams, user_seams)
+    : args.metric == ICM::Vertex_scaling_metric::name
+      ? run_metric<ICM::Vertex_scaling_metric>(mesh, uvmap, options, cones, seams, user_seams)
+      : run_metric<ICM::Intrinsic_delaunay_metric>(mesh, uvmap, options, cones, seams, user_seams);
+  progress.finish();
   if(report.status != SMP::OK)
-    return fail(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
 
   t = Clock::now();
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
-  if(!ICM::IO::write_uv_obj(args.output, uv_mesh, error))
-    return fail(error);
-  if(!args.svg.empty())
-  {
-    ICM::IO::Svg_options svg_options;
-    svg_options.title = args.input.substr(args.input.find_last_of("/\\") + 1) + " — ICM";
-    if(!ICM::IO::write_uv_svg(args.svg, uv_mesh, error, svg_options))
-      return fail(error);
-  }
-  const double seconds_write = since(t);
+  ICM::IO::Svg_options svg_options;
+  svg_options.title = fs::path(args.input).filename().string() + " — ICM";
+  if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options))
+    return fail_after_reading(error);
+  seconds.write = since(t);
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);
-
-  // Totals over the charts, and the worst of each check.
-  int cone_count = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, raw_overlaps = 0, pieces = 0, moved = 0;
-  double curvature_error = 0, length_error = 0, seam_error = 0;
-  std::string metrics, fallbacks;
-  for(const ICM::Chart_report& c : report.charts)
-  {
-    cone_count += static_cast<int>(c.cones.size());
-    genus += c.genus;
-    loops += c.boundary_loops;
-    newton = std::max(newton, c.newton_iterations);
-    overlaps += c.overlapping_border_edges;
-    raw_overlaps += c.raw_overlapping_border_edges;
-    pieces += c.pieces;
-    moved += c.moved_vertices;
-    curvature_error = std::max(curvature_error, c.max_curvature_error);
-    length_error = std::max(length_error, c.max_layout_length_error);
-    seam_error = std::max(seam_error, c.seam_length_error);
-    if(metrics.find(c.metric) == std::string::npos)
-      metrics += (metrics.empty() ? "" : ",") + c.metric;
-    if(!c.fallback_reason.empty() && fallbacks.empty())
-      fallbacks = c.fallback_reason;
-  }
+  seconds.total = since(start);
 
   if(args.json)
-  {
-    std::cout << "{\"input\":" << json_string(args.input) << ",\"output\":" << json_string(args.output)
-              << ",\"vertices\":" << num_vertices(mesh) << ",\"faces\":" << num_faces(mesh)
-              << ",\"charts\":" << pieces << ",\"components\":" << report.charts.size()
-              << ",\"boundary_loops\":" << loops << ",\"genus\":" << genus
-              << ",\"cones\":" << cone_count << ",\"seam_edges\":" << seams.size()
-              << ",\"layout\":\"propagation\""
-              << ",\"newton_iterations\":" << newton
-              << ",\"max_curvature_error\":" << json_number(curvature_error)
-              << ",\"max_layout_length_error\":" << json_number(length_error)
-              << ",\"seam_length_error\":" << json_number(seam_error)
-              << ",\"overlapping_border_edges\":" << overlaps
-              << ",\"raw_overlapping_border_edges\":" << raw_overlaps
-              << ",\"moved_vertices\":" << moved
-              << ",\"metric\":" << json_string(metrics)
-              << ",\"metric_fallback\":" << json_string(fallbacks)
-              << ",\"flipped_faces\":" << measures.flipped_faces
-              << ",\"log_area_distortion\":" << json_number(measures.log_area_distortion)
-              << ",\"area_ratio_min\":" << json_number(measures.area_ratio_min)
-              << ",\"area_ratio_max\":" << json_number(measures.area_ratio_max)
-              << ",\"qc_mean\":" << json_number(measures.qc_mean)
-              << ",\"seconds_read\":" << json_number(seconds_read)
-              << ",\"seconds_cones\":" << json_number(report.seconds_cones)
-              << ",\"seconds_optimum\":" << json_number(report.seconds_optimum)
-              << ",\"seconds_cut\":" << json_number(report.seconds_cut)
-              << ",\"seconds_layout\":" << json_number(report.seconds_layout)
-              << ",\"seconds_parameterize\":" << json_number(report.seconds_total)
-              << ",\"seconds_write\":" << json_number(seconds_write)
-              << ",\"seconds_total\":" << json_number(since(start)) << "}\n";
-  }
+    std::cout << summary_json(args, mesh, read, report, seams.size(), measures, seconds)
+                   .dump(-1, ' ', false, Json::error_handler_t::replace)
+              << "\n";
   else
   {
-    std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh)
-              << " faces, " << report.charts.size() << " chart(s), " << cone_count << " cones, "
-              << seams.size() << " seam edges, " << newton << " Newton iterations, max |k| "
-              << curvature_error << ", " << measures.flipped_faces
-              << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
-              << report.seconds_total << " s -> " << args.output << "\n";
+    for(const std::string& repair : read.repairs())
+      std::cerr << "icm_param: " << args.input << ": " << repair << "\n";
+    print_summary_line(args, mesh, report, seams.size(), measures);
   }
   return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  Arguments args;
+  Failure_report fail;
+  for(int i = 1; i < argc; ++i)
+    fail.json = fail.json || std::string(argv[i]) == "--json";
+  const int parsed = parse_arguments(argc, argv, args, fail);
+  if(parsed >= 0)
+    return parsed;
+  fail.input = args.input;
+  fail.output = args.output;
+  try
+  {
+    return run(args, fail);
+  }
+  catch(const std::bad_alloc&)
+  {
+    return fail("out of memory");
+  }
+  catch(const std::exception& e)
+  {
+    return fail(std::string("internal error: ") + e.what());
+  }
 }

@@ -6,6 +6,8 @@
 #include "test_support.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -268,7 +270,8 @@ TEST(Cli, BadConeArgumentsAreRefused)
   {
     const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o out.obj " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;
-    EXPECT_NE(r.err.find(bad[6] == 's' ? "--cones takes" : "VERTEX:DEGREES"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(bad[6] == 's' ? "--cones: takes 'auto'" : "--cone: takes VERTEX:DEGREES"), std::string::npos)
+      << r.err;
     EXPECT_TRUE(box.listing().empty()) << bad;
   }
   expect_clean_failure(box, box.run(quote(data_path("sphere966.off")) + " -o out.obj --cone 99999:90"), "926 vertices");
@@ -319,13 +322,23 @@ TEST(Cli, QuadFace)
   write_text(box.file("quad.off"), "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
   const Sandbox::Result r = box.run("quad.off -o out.obj");
   expect_clean_failure(box, r, "non-triangle", {"quad.off"});
+  EXPECT_NE(r.err.find("face 0 (line 7) has 4 sides"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--triangulate"), std::string::npos) << r.err;
+
+  // On request the quad is split by CGAL's triangulate_faces, and the repair is reported.
+  const Sandbox::Result t = box.run("quad.off -o out.obj --triangulate --json");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const std::string json = lines_of(t.out).at(0);
+  EXPECT_EQ(json_value(json, "faces"), "2");
+  EXPECT_EQ(json_value(json, "faces_triangulated"), "1");
+  EXPECT_NE(json.find("\"repairs\":[\"triangulated 1 polygon\"]"), std::string::npos) << json;
 }
 
 TEST(Cli, ZeroAreaFace)
 {
   Sandbox box;
   // A valid disk (one border loop, genus 0) whose third face has three collinear corners:
-  // it passes the tool's own checks and reaches the parameterizer, which refuses it.
+  // the reader refuses it, naming the face and its line.
   write_text(box.file("flat.off"),
              "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n");
   const Sandbox::Result r = box.run("flat.off -o out.obj");
@@ -335,7 +348,7 @@ TEST(Cli, ZeroAreaFace)
        "ERROR_NO_TOPOLOGICAL_BALL, so get_error_message(ERROR_WRONG_PARAMETER) is a null "
        "pointer, which icm_param passes to std::string. stderr:\n"
     << r.err;
-  expect_clean_failure(box, r, "degenerate", {"flat.off"});
+  expect_clean_failure(box, r, "face 2 (line 9) is degenerate", {"flat.off"});
 }
 
 TEST(Cli, UnknownOption)
@@ -355,6 +368,193 @@ TEST(Cli, MissingOutputOption)
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no output file"), std::string::npos) << r.err;
   EXPECT_TRUE(box.listing().empty());
+}
+
+TEST(Cli, HelpAndVersion)
+{
+  Sandbox box;
+  const Sandbox::Result help = box.run("--help");
+  EXPECT_EQ(help.exit_code, 0) << help.err;
+  for(const char* option : {"--output", "--svg", "--json", "--metric", "--cones", "--cone", "--seams",
+                            "--keep-overlaps", "--triangulate", "--quiet", "--version"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option << " missing in\n" << help.out;
+  const Sandbox::Result version = box.run("--version");
+  EXPECT_EQ(version.exit_code, 0) << version.err;
+  EXPECT_EQ(version.out.rfind("icm_param ", 0), 0u) << version.out;
+  EXPECT_NE(version.out.find("CGAL"), std::string::npos) << version.out;
+  EXPECT_TRUE(box.listing().empty());
+}
+
+TEST(Cli, JsonErrorObjectOnFailure)
+{
+  Sandbox box;
+  write_text(box.file("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+  const Sandbox::Result r = box.run("bad.obj -o out.obj --json");
+  EXPECT_EQ(r.exit_code, 1);
+  const std::vector<std::string> out = lines_of(r.out);
+  ASSERT_EQ(out.size(), 1u) << r.out;
+  EXPECT_EQ(out[0].front(), '{');
+  EXPECT_EQ(out[0].back(), '}');
+  EXPECT_NE(out[0].find("\"error\":\"'bad.obj': line 4: face 0: vertex index 9 is out of range"), std::string::npos)
+    << out[0];
+  EXPECT_EQ(json_value(out[0], "exit_code"), "1");
+  EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+  EXPECT_EQ(box.listing(), (std::vector<std::string>{"bad.obj"}));
+}
+
+TEST(Cli, OutputsAreAllOrNothing)
+{
+  const std::string input = quote(data_path("nefertiti.off"));
+  {
+    // The same file for both outputs: refused before any work.
+    Sandbox box;
+    expect_clean_failure(box, box.run(input + " -o same.obj --svg same.obj"), "name the same file");
+    expect_clean_failure(box, box.run(input + " -o same.obj --svg ./same.obj"), "name the same file");
+  }
+  {
+    // The input as an output: refused, the input untouched.
+    Sandbox box;
+    fs::copy_file(data_path("nefertiti.off"), box.file("mesh.off"));
+    const std::string before = read_text(box.file("mesh.off"));
+    expect_clean_failure(box, box.run("mesh.off -o mesh.off"), "names the input file", {"mesh.off"});
+    EXPECT_EQ(read_text(box.file("mesh.off")), before);
+  }
+  {
+    // A read-only OBJ is refused, not replaced (even for root, who could replace it), and
+    // the SVG beside it is not written either.
+    Sandbox box;
+    write_text(box.file("out.obj"), "read-only\n");
+    fs::permissions(box.file("out.obj"), fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    expect_clean_failure(box, box.run(input + " -o out.obj --svg out.svg"), "read-only", {"out.obj"});
+    EXPECT_EQ(read_text(box.file("out.obj")), "read-only\n");
+  }
+  {
+    // An SVG that cannot be written: the user's previous OBJ stays as it was.
+    Sandbox box;
+    write_text(box.file("out.obj"), "previous\n");
+    expect_clean_failure(box, box.run(input + " -o out.obj --svg no_such_dir/out.svg"), "does not exist",
+                         {"out.obj"});
+    EXPECT_EQ(read_text(box.file("out.obj")), "previous\n");
+    fs::create_directory(box.file("a_directory"));
+    expect_clean_failure(box, box.run(input + " -o out.obj --svg a_directory"), "directory",
+                         {"a_directory", "out.obj"});
+    EXPECT_EQ(read_text(box.file("out.obj")), "previous\n");
+  }
+}
+
+/// The `v` and `vt` lines of an OBJ as numbers.
+struct Obj_numbers
+{
+  std::vector<std::array<double, 3>> v;
+  std::vector<std::array<double, 2>> vt;
+};
+
+Obj_numbers read_obj_numbers(const fs::path& path)
+{
+  Obj_numbers obj;
+  for(const std::string& line : lines_of(read_text(path)))
+  {
+    std::istringstream in(line);
+    std::string key;
+    in >> key;
+    if(key == "v")
+    {
+      std::array<double, 3> p{};
+      in >> p[0] >> p[1] >> p[2];
+      obj.v.push_back(p);
+    }
+    else if(key == "vt")
+    {
+      std::array<double, 2> t{};
+      in >> t[0] >> t[1];
+      obj.vt.push_back(t);
+    }
+  }
+  return obj;
+}
+
+TEST(Cli, AnyFiniteScaleWorksAsOneDoes)
+{
+  // nefertiti scaled by 1e-300 and 1e+300: the same map, UVs in the mesh's units (scaled by
+  // the same factor) and the same distortion figures.
+  Sandbox box;
+  const std::string text = read_text(data_path("nefertiti.off"));
+  std::istringstream in(text);
+  std::string keyword;
+  std::size_t nv = 0, nf = 0, ne = 0;
+  in >> keyword >> nv >> nf >> ne;
+  std::vector<std::array<double, 3>> points(nv);
+  for(auto& p : points)
+    in >> p[0] >> p[1] >> p[2];
+  std::string faces;
+  std::getline(in, faces);
+  for(std::string line; std::getline(in, line);)
+    faces += line + "\n";
+  for(const double scale : {1.0, 1e-300, 1e+300})
+  {
+    std::ostringstream out;
+    out.precision(17);
+    out << "OFF\n" << nv << " " << nf << " 0\n";
+    for(const auto& p : points)
+      out << p[0] * scale << " " << p[1] * scale << " " << p[2] * scale << "\n";
+    out << faces;
+    write_text(box.file("scaled.off"), out.str());
+    const Sandbox::Result r = box.run("scaled.off -o scaled_" + std::to_string(int(std::log10(scale))) + ".obj --json");
+    ASSERT_EQ(r.exit_code, 0) << "scale " << scale << ": " << r.err;
+    const std::string json = lines_of(r.out).at(0);
+    EXPECT_EQ(json_value(json, "flipped_faces"), "0") << scale;
+    RecordProperty("json_" + std::to_string(int(std::log10(scale))), json);
+  }
+  const Obj_numbers one = read_obj_numbers(box.file("scaled_0.obj"));
+  for(const int exponent : {-300, 300})
+  {
+    const Obj_numbers scaled = read_obj_numbers(box.file("scaled_" + std::to_string(exponent) + ".obj"));
+    ASSERT_EQ(scaled.vt.size(), one.vt.size());
+    const double factor = std::pow(10.0, exponent);
+    double worst = 0, extent = 0;
+    for(std::size_t i = 0; i < one.vt.size(); ++i)
+      for(int k = 0; k < 2; ++k)
+      {
+        extent = std::max(extent, std::abs(one.vt[i][k]));
+        worst = std::max(worst, std::abs(scaled.vt[i][k] / factor - one.vt[i][k]));
+      }
+    EXPECT_LT(worst, 1e-9 * extent) << "UVs at 1e" << exponent << " are not the UVs at 1 times 1e" << exponent;
+  }
+}
+
+TEST(Cli, IsolatedAndNonManifoldVerticesAreRepaired)
+{
+  Sandbox box;
+  // Two fans of two triangles sharing vertex 1 only, and vertex 0 in no face.
+  write_text(box.file("pinched.off"), "OFF\n8 4 0\n9 9 9\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 0 0.1\n-1 -1 0\n0 -1 0\n"
+                                      "3 1 2 3\n3 1 3 4\n3 1 5 6\n3 1 6 7\n");
+  const Sandbox::Result r = box.run("pinched.off -o out.obj --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string json = lines_of(r.out).at(0);
+  EXPECT_EQ(json_value(json, "isolated_vertices_dropped"), "1");
+  EXPECT_EQ(json_value(json, "vertices_split"), "1");
+  EXPECT_EQ(json_value(json, "components"), "2");
+  EXPECT_EQ(json_value(json, "vertices"), "8"); // 8 - 1 dropped + 1 copy
+  // The documented numbering: the file's vertices without the dropped one, then the copy.
+  const Obj_numbers obj = read_obj_numbers(box.file("out.obj"));
+  ASSERT_EQ(obj.v.size(), 8u);
+  EXPECT_EQ(obj.v[0], (std::array<double, 3>{0, 0, 0}));
+  EXPECT_EQ(obj.v[4], (std::array<double, 3>{-1, 0, 0.1}));
+  EXPECT_EQ(obj.v[7], (std::array<double, 3>{0, 0, 0}));
+
+  // Without --json, each repair is one line before the summary.
+  const Sandbox::Result text = box.run("pinched.off -o out.obj");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::vector<std::string> lines = lines_of(text.err);
+  ASSERT_EQ(lines.size(), 3u) << text.err;
+  EXPECT_NE(lines[0].find("dropped 1 isolated vertex (in no face): 0"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("split 1 non-manifold vertex"), std::string::npos) << lines[1];
+
+  // A cone at a vertex that was dropped or split is refused, naming the repair.
+  expect_clean_failure(box, box.run("pinched.off -o cone.obj --cone 0:90"), "vertex 0 is in no face",
+                       {"out.obj", "pinched.off"});
+  expect_clean_failure(box, box.run("pinched.off -o cone.obj --cone 1:90"), "split into 2 vertices",
+                       {"out.obj", "pinched.off"});
 }
 
 } // namespace

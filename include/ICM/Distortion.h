@@ -144,6 +144,37 @@ inline void require_finite(const double* first, std::size_t count, const char* w
       throw std::invalid_argument(std::string("ICM::measure_distortion: non-finite ") + what + " coordinate");
 }
 
+/// Copies of `points` centred and scaled to unit size (half the longest side of their box is
+/// 1). Every measure is invariant under it, and areas of a mesh (or a layout) at 1e-300 or
+/// 1e+300 then neither underflow nor overflow. \pre every coordinate is finite.
+template <std::size_t N>
+std::vector<std::array<double, N>> to_unit_size(const std::vector<std::array<double, N>>& points)
+{
+  if(points.empty())
+    return points;
+  std::array<double, N> low = points[0], high = points[0];
+  for(const auto& p : points)
+    for(std::size_t k = 0; k < N; ++k)
+    {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  std::array<double, N> center{};
+  double half = 0;
+  for(std::size_t k = 0; k < N; ++k)
+  {
+    center[k] = low[k] / 2 + high[k] / 2; // halves first: no overflow near the largest double
+    half = std::max(half, high[k] / 2 - low[k] / 2);
+  }
+  if(!(half > 0))
+    half = 1;
+  std::vector<std::array<double, N>> out(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i)
+    for(std::size_t k = 0; k < N; ++k)
+      out[i][k] = (points[i][k] - center[k]) / half;
+  return out;
+}
+
 inline Uv_normalisation uv_normalisation(const std::vector<Point3>& xyz, const std::vector<Point2>& uv)
 {
   Compensated_sum area_3d, signed_area_uv, abs_area_uv;
@@ -318,6 +349,9 @@ Point3 to_point3(const P& p)
 template <class TriangleMesh, class VertexPointMap, class CornerUv>
 Distortion_measures measure_faces(const TriangleMesh& mesh, VertexPointMap vpm, CornerUv uv_of_corner);
 
+inline Distortion_measures measure_unit_size(const std::vector<std::array<double, 3>>& xyz,
+                                             const std::vector<std::array<double, 2>>& uv);
+
 }  // namespace distortion
 }  // namespace internal
 
@@ -331,6 +365,22 @@ inline Distortion_measures measure_distortion_of_triangles(const std::vector<std
     throw std::invalid_argument("ICM::measure_distortion_of_triangles: xyz and uv must both hold 3 corners per face "
                                 "(got " + std::to_string(xyz.size()) + " and " + std::to_string(uv.size()) + ")");
 
+  for(std::size_t c = 0; c < xyz.size(); ++c)
+  {
+    d::require_finite(xyz[c].data(), 3, "3D");
+    d::require_finite(uv[c].data(), 2, "UV");
+  }
+  return d::measure_unit_size(d::to_unit_size(xyz), d::to_unit_size(uv));
+}
+
+namespace internal {
+namespace distortion {
+
+/// `measure_distortion_of_triangles` on corners already scaled to unit size.
+inline Distortion_measures measure_unit_size(const std::vector<std::array<double, 3>>& xyz,
+                                             const std::vector<std::array<double, 2>>& uv)
+{
+  namespace d = internal::distortion;
   const d::Uv_normalisation normalisation = d::uv_normalisation(xyz, uv);
   d::Distortion_accumulator accumulator;
   for(std::size_t c = 0; c < xyz.size(); c += 3)
@@ -356,6 +406,9 @@ inline Distortion_measures measure_distortion_of_triangles(const std::vector<std
   }
   return accumulator.finish(xyz.size() / 3);
 }
+
+}  // namespace distortion
+}  // namespace internal
 
 /// UV per vertex, 3D points from `vpm`. Works for any FaceGraph (Surface_mesh, Polyhedron_3,
 /// Seam_mesh with a map keyed by its own vertex_descriptor, ...). Throws std::invalid_argument

@@ -48,28 +48,6 @@ enum class Optimum_method
   Curvature_diffusion  ///< the paper's Algorithm 5 (slow; for validation)
 };
 
-/// The text of an `Error_code`. CGAL 5.5.1's `get_error_message()` skips
-/// `ERROR_NO_TOPOLOGICAL_BALL`, so from there on it returns the next code's text and a null
-/// pointer for `ERROR_WRONG_PARAMETER`.
-inline const char* error_message(CGAL::Surface_mesh_parameterization::Error_code code)
-{
-  using namespace CGAL::Surface_mesh_parameterization;
-  switch(code)
-  {
-  case OK: return "Success";
-  case ERROR_EMPTY_MESH: return "Input mesh is empty";
-  case ERROR_NON_TRIANGULAR_MESH: return "Input mesh is not triangular";
-  case ERROR_NO_TOPOLOGICAL_DISC: return "Input mesh is not a topological disc";
-  case ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
-  case ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
-  case ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
-  case ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
-  case ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
-  case ERROR_WRONG_PARAMETER: return "Invalid input";
-  }
-  return "Unknown error";
-}
-
 /// How `Inverse_curvature_map_parameterizer_3` reads the seams of a `CGAL::Seam_mesh`.
 enum class Seam_reading
 {
@@ -123,9 +101,9 @@ struct Parameterization_options
 /// any failure.
 struct Parameterization_report
 {
-  CGAL::Surface_mesh_parameterization::Error_code status =
-    CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH;
-  std::string message;           ///< empty on success, else the human reason
+  /// `NOT_RUN` until the first `parameterize()`.
+  CGAL::Surface_mesh_parameterization::Error_code status = NOT_RUN;
+  std::string message = "not run";  ///< empty on success, else the human reason
   int vertices = 0, faces = 0, edges = 0, boundary_loops = 0, genus = 0, euler_characteristic = 0;
   std::string metric;            ///< the metric of the result ("vertex-scaling", ...)
   std::string metric_summary;    ///< what that metric changed of the mesh, in words
@@ -221,6 +199,8 @@ public:
 
     // Step 0: index the component once.
     stage("index");
+    if(faces(mesh).empty())
+      return run.fail(ERROR_EMPTY_MESH, "the mesh has no faces");
     if(bhd == boost::graph_traits<TriangleMesh>::null_halfedge())
       return run.fail(ERROR_WRONG_PARAMETER, "no border halfedge given");
     if(!is_border(bhd, mesh))
@@ -259,10 +239,12 @@ public:
     if(status != OK)
       return run.fail(status, run.report.message);
 
+    // The layout is in the index's normalised units: back to the mesh's.
     using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
+    const double scale = index.normalisation.scale;
     for(int v = 0; v < index.number_of_vertices(); ++v)
     {
-      put(uvmap, vertices[v], Uv_point(uv[v][0], uv[v][1]));
+      put(uvmap, vertices[v], Uv_point(scale * uv[v][0], scale * uv[v][1]));
       put(vpmap, vertices[v], true);
     }
     return run.succeed();

@@ -33,12 +33,43 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 namespace ICM {
+
+/// The status of a report before its first run. CGAL's `Error_code` has no such value: this
+/// one lies after its last code and inside the range the enumeration can hold (its values
+/// take 4 bits, so 0 to 15 are valid), so no CGAL code is ever mistaken for it.
+constexpr CGAL::Surface_mesh_parameterization::Error_code NOT_RUN =
+  static_cast<CGAL::Surface_mesh_parameterization::Error_code>(15);
+
+/// The text of an `Error_code` (and "not run" for `NOT_RUN`). CGAL 5.5.1's `get_error_message()` skips
+/// `ERROR_NO_TOPOLOGICAL_BALL`, so from there on it returns the next code's text and a null
+/// pointer for `ERROR_WRONG_PARAMETER`.
+inline const char* error_message(CGAL::Surface_mesh_parameterization::Error_code code)
+{
+  using namespace CGAL::Surface_mesh_parameterization;
+  switch(code)
+  {
+  case OK: return "Success";
+  case ERROR_EMPTY_MESH: return "Input mesh is empty";
+  case ERROR_NON_TRIANGULAR_MESH: return "Input mesh is not triangular";
+  case ERROR_NO_TOPOLOGICAL_DISC: return "Input mesh is not a topological disc";
+  case ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
+  case ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
+  case ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
+  case ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
+  case ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
+  case ERROR_WRONG_PARAMETER: return "Invalid input";
+  }
+  if(code == NOT_RUN)
+    return "not run";
+  return "Unknown error";
+}
 
 /// Options of `ICM::parameterize`.
 struct Surface_parameterization_options
@@ -70,6 +101,11 @@ struct Surface_parameterization_options
   /// A chart whose layout overlaps itself is cut into pieces that do not (`remove_overlaps`);
   /// false keeps the raw optimum and only counts its overlaps.
   bool remove_overlaps = true;
+  /// Called, when set, at the start of each stage of each component ("cones", "cut",
+  /// "optimum", "overlaps") and once at the end ("done"), with the share of the work done so
+  /// far, 0 to 1 (components weighted by their faces; within one, a fixed share per stage).
+  /// For a progress line on long runs; it must not throw.
+  std::function<void(const std::string& stage, double fraction)> progress;
 };
 
 /// What `ICM::parameterize` did to one connected component.
@@ -97,15 +133,27 @@ struct Chart_report
 /// connected component and the seconds of each stage (doc/report.md).
 struct Surface_parameterization_report
 {
-  CGAL::Surface_mesh_parameterization::Error_code status =
-    CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH;
-  std::string message;                 ///< empty on success, else the reason
+  /// `NOT_RUN` until filled by `ICM::parameterize`.
+  CGAL::Surface_mesh_parameterization::Error_code status = NOT_RUN;
+  std::string message = "not run";     ///< empty on success, else the reason
   std::vector<Chart_report> charts;    ///< one per connected component
   double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
          seconds_total = 0;
 };
 
 namespace internal {
+
+/// The progress of one component: `start` of the whole done before it, `span` its share.
+struct Stage_progress
+{
+  const std::function<void(const std::string&, double)>* callback = nullptr;
+  double start = 0, span = 1;
+  void operator()(const char* stage, double within) const
+  {
+    if(callback != nullptr && *callback)
+      (*callback)(stage, start + span * within);
+  }
+};
 
 /// The metric of class `Metric` for `index`; a metric that flips its own triangulation keeps
 /// `fixed_edges` (the seams) as edges.
@@ -349,7 +397,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
                                    const std::vector<double>& prescribed, const std::vector<char>& user_seams,
                                    const Surface_parameterization_options& options,
                                    Surface_parameterization_report& report, Chart_report& chart,
-                                   Cut_mesh& cut, std::vector<Uv>& uv)
+                                   Cut_mesh& cut, std::vector<Uv>& uv,
+                                   const Stage_progress& progress = Stage_progress())
 {
   using Clock = std::chrono::steady_clock;
   auto seconds_since = [](Clock::time_point t) {
@@ -360,6 +409,7 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   const int chi = index.euler_characteristic();
 
   // On the surface: the singular set.
+  progress("cones", 0.0);
   Clock::time_point t = Clock::now();
   std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
   int user_cones = 0, free_user_cones = 0;
@@ -456,6 +506,7 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   // The cut: through every interior singular vertex that will carry curvature (the one
   // free vertex of a torus carries none), made before the optimum so that a metric with
   // its own triangulation keeps the seams as edges.
+  progress("cut", 0.35);
   t = Clock::now();
   std::vector<char> is_cone(nv, 0);
   int interior_singular = 0;
@@ -479,6 +530,7 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 
   // On the surface: the optimum in the class of `Metric`; on the cut: its layout. If either
   // fails, both again in the class of the circle packing, from the chart as it was.
+  progress("optimum", 0.4);
   const Chart_report before_optimum = chart;
   std::string failure =
     optimum_and_layout<Metric, Solver>(index, graph.is_seam, is_singular, prescribed, cut, options,
@@ -495,6 +547,7 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   chart.raw_overlapping_border_edges = chart.overlapping_border_edges;
   if(failure.empty() && options.remove_overlaps && chart.overlapping_border_edges > 0)
   {
+    progress("overlaps", 0.9);
     t = Clock::now();
     const Overlap_removal removal = remove_overlaps(index, cut, uv);
     if(!cut.ok())
@@ -593,15 +646,37 @@ Surface_parameterization_report parameterize(
     put(is_user_seam, e, true);
   }
 
+  // One frame for every component, so that the charts are packed in common units; the UVs
+  // go back to the mesh's units when written.
+  std::vector<std::array<double, 3>> corner_points;
+  std::vector<std::size_t> component_faces(components, 0);
+  const auto vpm = get(CGAL::vertex_point, mesh);
+  for(face_descriptor f : faces(mesh))
+  {
+    ++component_faces[get(component_of, f)];
+    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
+    {
+      const auto& p = get(vpm, v);
+      corner_points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    }
+  }
+  const internal::Normalisation normalisation = internal::normalisation_of(corner_points);
+  corner_points = {};
+  const double total_faces = static_cast<double>(num_faces(mesh));
+  double faces_done = 0;
+
   std::vector<std::vector<Uv>> chart_uvs(components);
   std::vector<Cut_mesh> cuts(components);
   std::vector<std::vector<face_descriptor>> chart_faces(components);
   for(std::size_t c = 0; c < components; ++c)
   {
+    internal::Stage_progress progress{&options.progress, faces_done / total_faces,
+                                      static_cast<double>(component_faces[c]) / total_faces};
+    faces_done += static_cast<double>(component_faces[c]);
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
     const internal::Index_status indexed = internal::index_mesh(
-      mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices, &chart_faces[c]);
+      mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices, &chart_faces[c], &normalisation);
     Chart_report chart;
     chart.vertices = index.number_of_vertices();
     chart.faces = index.number_of_faces();
@@ -631,7 +706,7 @@ Surface_parameterization_report parameterize(
         component_seams.clear();
     }
     const std::string failure = internal::parameterize_component<Metric, Solver>(
-      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c]);
+      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c], progress);
     report.charts.push_back(chart);
     if(!failure.empty())
       return finish(failure.find("flipped") != std::string::npos ||
@@ -647,7 +722,7 @@ Surface_parameterization_report parameterize(
           seam_edges->push_back(edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
   }
 
-  // The charts side by side, each at its 3D scale: UV area = 3D area.
+  // The charts side by side, each at its 3D scale: UV area = 3D area (normalised units).
   std::vector<Chart_box> boxes;
   for(std::size_t c = 0; c < components; ++c)
   {
@@ -674,7 +749,8 @@ Surface_parameterization_report parameterize(
       for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(chart_faces[c][f], mesh), mesh))
       {
         const Uv& p = chart_uvs[c][cuts[c].disk.faces[f][corner++]];
-        const Uv_point q(p[0] + offsets[c][0], p[1] + offsets[c][1]);
+        const Uv_point q(normalisation.scale * (p[0] + offsets[c][0]),
+                         normalisation.scale * (p[1] + offsets[c][1]));
         put(uv_map, h, q);
         // The border halfedge into the same vertex, if any, shares this corner's wedge when
         // it is the corner next to the border.
@@ -683,6 +759,8 @@ Surface_parameterization_report parameterize(
           put(uv_map, prev(out, mesh), q);
       }
     }
+  if(options.progress)
+    options.progress("done", 1.0);
   return finish(OK, "");
 }
 

@@ -112,6 +112,46 @@ inline double position_area(const Uv_mesh& m, std::size_t f)
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
+} // namespace IO
+
+namespace internal {
+
+/// Half the longest side of the bounding box of `points` (1 if none or zero).
+template <class Points>
+double half_extent(const Points& points)
+{
+  if(points.empty())
+    return 1.;
+  auto low = points[0], high = points[0];
+  for(const auto& p : points)
+    for(std::size_t k = 0; k < p.size(); ++k) {
+      low[k] = (std::min)(low[k], p[k]);
+      high[k] = (std::max)(high[k], p[k]);
+    }
+  double half = 0.;
+  for(std::size_t k = 0; k < low.size(); ++k)
+    half = (std::max)(half, high[k] / 2 - low[k] / 2); // halves first: no overflow
+  return half > 0. && std::isfinite(half) ? half : 1.;
+}
+
+/// `m` with positions and UVs each divided by their half extent (faces unchanged).
+inline IO::Uv_mesh at_unit_size(const IO::Uv_mesh& m)
+{
+  IO::Uv_mesh unit = m;
+  const double p = half_extent(m.positions), t = half_extent(m.uvs);
+  for(auto& x : unit.positions)
+    for(double& c : x)
+      c /= p;
+  for(auto& x : unit.uvs)
+    for(double& c : x)
+      c /= t;
+  return unit;
+}
+
+} // namespace internal
+
+namespace IO {
+
 /// Per face log(s_uv / s_3d), where the UVs are first scaled uniformly so that the total
 /// |UV area| equals the total 3D area: the result does not depend on the scale of the layout,
 /// only on how unevenly it distributes area (0 everywhere means area preserving up to scale).
@@ -125,12 +165,15 @@ inline double position_area(const Uv_mesh& m, std::size_t f)
 /// \pre `m` is valid (`is_valid_uv_mesh()`).
 inline std::vector<double> log_area_ratios(const Uv_mesh& m)
 {
+  // Areas of a copy at unit size: at 1e-300 or 1e+300 the products of coordinates would
+  // underflow or overflow, and the ratios do not depend on either scale.
+  const Uv_mesh unit = internal::at_unit_size(m);
   const std::size_t nf = m.number_of_faces();
   std::vector<double> uv_area(nf), area_3d(nf);
   double total_uv = 0., total_3d = 0.;
   for(std::size_t f = 0; f < nf; ++f) {
-    uv_area[f] = std::abs(uv_signed_area(m, f));
-    area_3d[f] = position_area(m, f);
+    uv_area[f] = std::abs(uv_signed_area(unit, f));
+    area_3d[f] = position_area(unit, f);
     total_uv += uv_area[f];
     total_3d += area_3d[f];
   }

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -30,12 +31,17 @@ namespace IO {
 /// file's order, each edge once). Returns false with `error` naming the line and value at
 /// fault when the file cannot be read, a value is not a vertex index of the mesh, a pair is
 /// not an edge of the mesh, the count of values is odd, or the file names no edge at all.
+///
+/// `by_index[i]` are the vertices of the mesh that the file's index `i` names: one each when
+/// the indices are positions in `vertices(mesh)`, none or several when the mesh was repaired
+/// after reading (a dropped isolated vertex, a split non-manifold one: see
+/// `Mesh_reading_report::file_vertex`); a pair names the edge between any of its vertices.
 template <class TriangleMesh>
-bool read_seam_selection(const std::string& path, const TriangleMesh& mesh,
-                         std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& seams,
-                         std::string& error)
+bool read_seam_selection(
+  const std::string& path, const TriangleMesh& mesh,
+  const std::vector<std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>>& by_index,
+  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& seams, std::string& error)
 {
-  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   seams.clear();
   std::ifstream in(path);
   if(!in)
@@ -43,7 +49,6 @@ bool read_seam_selection(const std::string& path, const TriangleMesh& mesh,
     error = "cannot open seam file '" + path + "'";
     return false;
   }
-  const std::vector<vertex_descriptor> by_index(vertices(mesh).begin(), vertices(mesh).end());
   std::string line;
   for(int skipped = 0; skipped < 2; ++skipped)
     if(!std::getline(in, line))
@@ -86,11 +91,22 @@ bool read_seam_selection(const std::string& path, const TriangleMesh& mesh,
                 " vertices)";
         return false;
       }
+      if(by_index[index].empty())
+      {
+        error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertex " +
+                std::to_string(index) + " is in no face of the mesh";
+        return false;
+      }
       p = after;
       ends.push_back(index);
       if(ends.size() < 2)
         continue;
-      const auto [h, found] = halfedge(by_index[ends[0]], by_index[ends[1]], mesh);
+      typename boost::graph_traits<TriangleMesh>::halfedge_descriptor h;
+      bool found = false;
+      for(auto a : by_index[ends[0]])
+        for(auto b : by_index[ends[1]])
+          if(!found)
+            std::tie(h, found) = halfedge(a, b, mesh);
       if(!found)
       {
         error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertices " +
@@ -113,6 +129,21 @@ bool read_seam_selection(const std::string& path, const TriangleMesh& mesh,
     return false;
   }
   return true;
+}
+
+/// Reads seams whose vertex indices are positions in `vertices(mesh)` (see the overload
+/// with `by_index`).
+template <class TriangleMesh>
+bool read_seam_selection(const std::string& path, const TriangleMesh& mesh,
+                         std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& seams,
+                         std::string& error)
+{
+  using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
+  std::vector<std::vector<vertex_descriptor>> by_index;
+  by_index.reserve(num_vertices(mesh));
+  for(vertex_descriptor v : vertices(mesh))
+    by_index.push_back({v});
+  return read_seam_selection(path, mesh, by_index, seams, error);
 }
 
 } // namespace IO

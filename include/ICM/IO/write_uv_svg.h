@@ -132,8 +132,9 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   // A layout that came out mirrored (clockwise overall) is not a defect of its faces:
   // mirror it back so that only faces oriented against the majority count as flipped.
   double total_signed = 0.;
+  const IO::Uv_mesh unit = at_unit_size(m); // no overflow or underflow of the areas
   for(std::size_t f = 0; f < nf; ++f)
-    total_signed += IO::uv_signed_area(m, f);
+    total_signed += IO::uv_signed_area(unit, f);
   const double mirror = total_signed < 0. ? -1. : 1.;
 
   double umin = std::numeric_limits<double>::infinity(), umax = -umin;
@@ -190,7 +191,7 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   }
   std::vector<std::size_t> flipped;
   for(std::size_t f = 0; f < nf; ++f) {
-    if(mirror * IO::uv_signed_area(m, f) < 0.) {
+    if(mirror * IO::uv_signed_area(unit, f) < 0.) {
       flipped.push_back(f);
       continue;
     }
@@ -375,6 +376,22 @@ inline bool write_uv_svg(const std::string& path, const Uv_mesh& m, std::string&
                          const Svg_options& opt = Svg_options())
 {
   return internal::write_svg_file(path, {{std::string(), &m}}, error, opt);
+}
+
+/// Writes the SVG picture of `m` (see the overload on a path) to `os`. Returns false with
+/// `error` naming the reason when the options or the mesh are invalid, or the stream failed;
+/// for an output written together with others, all or nothing (`write_uv_files()`).
+inline bool write_uv_svg(std::ostream& os, const Uv_mesh& m, std::string& error,
+                         const Svg_options& opt = Svg_options())
+{
+  if(!internal::check_svg_options(opt, error) || !is_valid_uv_mesh(m, error))
+    return false;
+  if(!internal::write_svg_panels(os, {{std::string(), &m}}, opt)) {
+    error = "output error";
+    return false;
+  }
+  error.clear();
+  return true;
 }
 
 /// Like `write_uv_svg()`, for several layouts side by side (e.g. ICM, LSCM and ARAP on the

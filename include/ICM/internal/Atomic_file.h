@@ -20,6 +20,7 @@
 #include <ostream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #ifdef _WIN32
 #  include <fcntl.h>
@@ -68,92 +69,259 @@ inline std::string errno_message(int err, const char* fallback)
   return err != 0 ? std::string(std::strerror(err)) : std::string(fallback);
 }
 
-/// Writes a file atomically.
-///
-/// `body` writes the whole content into the stream it is given (opened in binary mode, with
-/// the classic "C" locale so numbers never get a decimal comma) and returns whether it
-/// succeeded. The content goes to a temporary file `path.tmp<pid>.<n>` in the target's
-/// directory (same file system, so the final rename is atomic on POSIX), which replaces
-/// `path` only when `body` returned true and the stream is still good after close.
-///
-/// On failure the temporary file is removed, `path` is left as it was (missing, or with its
-/// previous content), `error` gets a one-line reason such as
-/// "cannot write '/x/y.obj': No such file or directory" and the function returns false.
-/// Exceptions thrown by `body` are caught and reported the same way.
-///
-/// The replaced file gets default permissions, and a symbolic link at `path` is replaced by a
-/// regular file rather than followed. Durability across a power loss (fsync) is not attempted.
-inline bool write_file_atomically(const std::string& path,
-                                  const std::function<bool(std::ostream&)>& body,
-                                  std::string& error)
+/// Why the file at `path` must not be replaced, or empty: something that is not a regular
+/// file (a directory, a device), or a file without write permission. A read-only file is
+/// refused even where the rename would be allowed (the directory is writable, or the
+/// process runs as root): the user said it must not change.
+inline std::string replace_refusal(const std::string& path)
 {
-  const std::string prefix = "cannot write '" + path + "': ";
-  if(path.empty()) {
-    error = "cannot write an output file with an empty name";
-    return false;
-  }
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::symlink_status(path, ec);
+  if(ec || !std::filesystem::exists(status))
+    return {};
+  if(std::filesystem::is_symlink(status))
+    return {}; // the link itself is replaced, never its target
+  if(!std::filesystem::is_regular_file(status))
+    return std::filesystem::is_directory(status) ? "it is a directory" : "it is not a regular file";
+  using std::filesystem::perms;
+  const perms p = status.permissions();
+  if((p & (perms::owner_write | perms::group_write | perms::others_write)) == perms::none)
+    return "the file is read-only";
+#ifndef _WIN32
+  if(::access(path.c_str(), W_OK) != 0)
+    return "the file is not writable (" + errno_message(errno, "permission denied") + ")";
+#endif
+  return {};
+}
 
-  // A per process counter makes names unique between threads; O_EXCL makes them unique
-  // against anything else.
-  static std::atomic<unsigned long> counter{0};
-  std::string temp;
-  bool created = false;
-  int err = 0;
-  for(int attempt = 0; attempt < 100 && !created; ++attempt) {
-    temp = path + ".tmp" + std::to_string(current_process_id()) + "." +
-           std::to_string(counter.fetch_add(1));
-    errno = 0;
-    created = create_new_file(temp);
-    err = errno;
-    if(!created && err != EEXIST)
-      break;
-  }
-  if(!created) {
-    error = prefix + errno_message(err, "cannot create a temporary file");
-    return false;
-  }
-
-  auto fail = [&](const std::string& reason) {
-    std::remove(temp.c_str());
-    error = prefix + reason;
-    return false;
+/// Whether two paths name one file: through links when both exist, else once made absolute,
+/// resolved as far as they exist and normalised ("a.obj" and "./x/../a.obj" are one file).
+inline bool same_file(const std::string& a, const std::string& b)
+{
+  std::error_code ec;
+  if(std::filesystem::equivalent(a, b, ec))
+    return true;
+  // Absolute first: weakly_canonical leaves a relative path that names nothing yet relative.
+  auto resolved = [](const std::string& p) {
+    std::error_code e;
+    const std::filesystem::path absolute = std::filesystem::absolute(p, e);
+    std::filesystem::path r = std::filesystem::weakly_canonical(absolute, e);
+    if(e)
+      r = absolute;
+    return r.lexically_normal();
   };
+  return resolved(a) == resolved(b);
+}
 
-  bool ok = false;
+/// One file for `write_files_atomically()`: its path and the function that writes its
+/// content into the stream it is given, returning whether it succeeded.
+struct Atomic_output
+{
+  std::string path;
+  std::function<bool(std::ostream&)> body;
+};
+
+/// A temporary file next to its target, removed on destruction unless it was renamed.
+class Temporary_file
+{
+public:
+  Temporary_file() = default;
+  Temporary_file(const Temporary_file&) = delete;
+  Temporary_file& operator=(const Temporary_file&) = delete;
+  ~Temporary_file() { discard(); }
+
+  /// Creates `target.tmp<pid>.<n>` (a per-process counter makes names unique between
+  /// threads; O_EXCL against anything else). Returns false with the reason on failure.
+  bool create(const std::string& target, std::string& reason)
   {
+    static std::atomic<unsigned long> counter{0};
+    int err = 0;
+    for(int attempt = 0; attempt < 100; ++attempt) {
+      const std::string name = target + ".tmp" + std::to_string(current_process_id()) + "." +
+                               std::to_string(counter.fetch_add(1));
+      errno = 0;
+      if(create_new_file(name)) {
+        name_ = name;
+        return true;
+      }
+      err = errno;
+      if(err != EEXIST)
+        break;
+    }
+    reason = errno_message(err, "cannot create a temporary file");
+    return false;
+  }
+
+  /// Writes the content with `body`; returns false with the reason on failure, keeping the
+  /// reason of a write that failed inside `body` (a full disk often shows only at close).
+  bool write(const std::function<bool(std::ostream&)>& body, std::string& reason)
+  {
+    bool ok = false;
     std::ofstream out;
     errno = 0;
-    out.open(temp, std::ios::out | std::ios::binary | std::ios::trunc);
-    if(!out.is_open())
-      return fail(errno_message(errno, "cannot open a temporary file"));
+    out.open(name_, std::ios::out | std::ios::binary | std::ios::trunc);
+    if(!out.is_open()) {
+      reason = errno_message(errno, "cannot open a temporary file");
+      return false;
+    }
     out.imbue(std::locale::classic());
     try {
       ok = body(out);
     } catch(const std::exception& e) {
-      return fail(std::string("writer failed: ") + e.what());
+      reason = std::string("writer failed: ") + e.what();
+      return false;
     } catch(...) {
-      return fail("writer failed with an unknown exception");
+      reason = "writer failed with an unknown exception";
+      return false;
     }
-    // Keep the reason of a write that already failed inside body; otherwise a full disk
-    // usually only shows at flush or close time.
     int write_err = out.fail() ? errno : 0;
     errno = 0;
     out.flush();
     out.close();
     if(write_err == 0)
       write_err = errno;
-    if(out.fail())
-      return fail(errno_message(write_err, "output error"));
+    if(out.fail()) {
+      reason = errno_message(write_err, "output error");
+      return false;
+    }
+    if(!ok) {
+      reason = "the writer reported a failure";
+      return false;
+    }
+    return true;
   }
-  if(!ok)
-    return fail("the writer reported a failure");
 
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if(ec)
-    return fail(ec.message());
+  /// Renames the temporary over `target`; it is then no longer removed.
+  bool rename_to(const std::string& target, std::string& reason)
+  {
+    std::error_code ec;
+    std::filesystem::rename(name_, target, ec);
+    if(ec) {
+      reason = ec.message();
+      return false;
+    }
+    name_.clear();
+    return true;
+  }
+
+  void discard()
+  {
+    if(!name_.empty())
+      std::remove(name_.c_str());
+    name_.clear();
+  }
+
+  const std::string& name() const { return name_; }
+
+private:
+  std::string name_;
+};
+
+/// Writes several files all or nothing.
+///
+/// Every content goes to a temporary file next to its target (same file system, so each
+/// rename is atomic on POSIX); the targets are replaced only once every content was written
+/// without error, each target refused beforehand if it is read-only or not a regular file,
+/// and the same path named twice is refused. Should a rename still fail, the targets already
+/// renamed get their previous content back (kept under a hard link until the end) or are
+/// removed if they did not exist. No temporary remains, whatever happens; durability across
+/// a power loss (fsync) is not attempted.
+///
+/// On failure `error` gets a one-line reason such as "cannot write '/x/y.obj': No such file
+/// or directory" and the function returns false. Exceptions thrown by a body are caught and
+/// reported the same way.
+inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, std::string& error)
+{
+  for(std::size_t i = 0; i < outputs.size(); ++i) {
+    if(outputs[i].path.empty()) {
+      error = "cannot write an output file with an empty name";
+      return false;
+    }
+    for(std::size_t j = 0; j < i; ++j) {
+      if(same_file(outputs[i].path, outputs[j].path)) {
+        error = "cannot write '" + outputs[i].path + "' twice (two outputs name the same file)";
+        return false;
+      }
+    }
+    const std::string refusal = replace_refusal(outputs[i].path);
+    if(!refusal.empty()) {
+      error = "cannot write '" + outputs[i].path + "': " + refusal;
+      return false;
+    }
+  }
+
+  std::vector<Temporary_file> temporaries(outputs.size());
+  std::string reason;
+  for(std::size_t i = 0; i < outputs.size(); ++i)
+    if(!temporaries[i].create(outputs[i].path, reason) || !temporaries[i].write(outputs[i].body, reason)) {
+      error = "cannot write '" + outputs[i].path + "': " + reason;
+      return false; // the destructors remove every temporary
+    }
+
+  // Previous content of each target, under a hard link, in case a later rename fails.
+  struct Previous
+  {
+    std::string backup;
+    bool existed = false;
+  };
+  std::vector<Previous> previous(outputs.size());
+  auto drop_backups = [&]() {
+    for(const Previous& p : previous)
+      if(!p.backup.empty())
+        std::remove(p.backup.c_str());
+  };
+  for(std::size_t i = 0; i < outputs.size() && outputs.size() > 1; ++i) {
+    std::error_code ec;
+    previous[i].existed = std::filesystem::exists(std::filesystem::symlink_status(outputs[i].path, ec));
+    if(!previous[i].existed)
+      continue;
+    Temporary_file name;
+    if(!name.create(outputs[i].path, reason))
+      continue;
+    const std::string backup = name.name();
+    name.discard();
+    std::filesystem::create_hard_link(outputs[i].path, backup, ec);
+    if(!ec)
+      previous[i].backup = backup;
+  }
+  for(std::size_t i = 0; i < outputs.size(); ++i) {
+    if(temporaries[i].rename_to(outputs[i].path, reason))
+      continue;
+    for(std::size_t j = 0; j < i; ++j) {
+      std::error_code ec;
+      if(!previous[j].backup.empty()) {
+        std::filesystem::rename(previous[j].backup, outputs[j].path, ec);
+        if(!ec)
+          previous[j].backup.clear();
+      } else if(!previous[j].existed)
+        std::filesystem::remove(outputs[j].path, ec);
+    }
+    drop_backups();
+    error = "cannot write '" + outputs[i].path + "': " + reason;
+    return false;
+  }
+  drop_backups();
   error.clear();
   return true;
+}
+
+/// Writes one file atomically: `write_files_atomically()` with one output.
+///
+/// `body` writes the whole content into the stream it is given (opened in binary mode, with
+/// the classic "C" locale so numbers never get a decimal comma) and returns whether it
+/// succeeded. The content goes to a temporary file `path.tmp<pid>.<n>` in the target's
+/// directory, which replaces `path` only when `body` returned true and the stream is still
+/// good after close.
+///
+/// On failure the temporary file is removed, `path` is left as it was (missing, or with its
+/// previous content), `error` gets a one-line reason and the function returns false. A
+/// read-only `path` is refused, not replaced. The replaced file gets default permissions,
+/// and a symbolic link at `path` is replaced by a regular file rather than followed.
+inline bool write_file_atomically(const std::string& path,
+                                  const std::function<bool(std::ostream&)>& body,
+                                  std::string& error)
+{
+  return write_files_atomically({Atomic_output{path, body}}, error);
 }
 
 } // namespace internal

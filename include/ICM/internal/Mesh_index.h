@@ -25,12 +25,71 @@
 namespace ICM {
 namespace internal {
 
+/// Centring and scaling of coordinates: a point p of the input is (p - center) / scale in a
+/// `Mesh_index`. Everything downstream (lengths, areas, angles, Newton) then works on
+/// numbers near 1 whatever the mesh's units: squared lengths of a mesh at 1e-300 would
+/// underflow to zero and areas of one at 1e+300 overflow to infinity.
+struct Normalisation
+{
+  std::array<double, 3> center{0, 0, 0};
+  double scale = 1;
+
+  /// The frame of a bounding box: its centre, and half its longest side as the unit (1 if
+  /// the box is a point). Halves are taken before differences, so a box that spans the
+  /// whole range of doubles does not overflow.
+  static Normalisation of_box(const std::array<double, 3>& low, const std::array<double, 3>& high)
+  {
+    Normalisation n;
+    double half = 0;
+    for(int k = 0; k < 3; ++k)
+    {
+      n.center[k] = low[k] / 2 + high[k] / 2;
+      half = std::max(half, high[k] / 2 - low[k] / 2);
+    }
+    if(half > 0 && std::isfinite(half))
+      n.scale = half;
+    for(double& c : n.center)
+      if(!std::isfinite(c))
+        c = 0;
+    return n;
+  }
+
+  std::array<double, 3> apply(const std::array<double, 3>& p) const
+  {
+    return {(p[0] - center[0]) / scale, (p[1] - center[1]) / scale, (p[2] - center[2]) / scale};
+  }
+};
+
+/// The `Normalisation` of the bounding box of `points` (any range of `std::array<double, 3>`),
+/// non-finite points left out.
+template <class PointRange>
+Normalisation normalisation_of(const PointRange& points)
+{
+  std::array<double, 3> low{0, 0, 0}, high{0, 0, 0};
+  bool first = true;
+  for(const std::array<double, 3>& p : points)
+  {
+    if(!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      continue;
+    for(int k = 0; k < 3; ++k)
+    {
+      low[k] = first ? p[k] : std::min(low[k], p[k]);
+      high[k] = first ? p[k] : std::max(high[k], p[k]);
+    }
+    first = false;
+  }
+  return Normalisation::of_box(low, high);
+}
+
 /// Compact, read-only description of one connected triangle mesh.
 /// Faces keep the orientation of the input; corner `c` of face `f` is `faces[f][c]`, and
 /// `face_edges[f][c]` is the edge opposite that corner.
 struct Mesh_index
 {
-  std::vector<std::array<double, 3>> points;     // per vertex
+  /// Per vertex, normalised by `normalisation` when built by `index_mesh()`: lengths and
+  /// UVs computed from them are in units of `normalisation.scale`.
+  std::vector<std::array<double, 3>> points;
+  Normalisation normalisation;                   // identity unless built by index_mesh()
   std::vector<std::array<int, 3>> faces;         // vertex indices, input orientation
   std::vector<std::array<int, 3>> face_edges;    // edge opposite each corner
   std::vector<std::array<int, 2>> edges;         // endpoints, first < second
@@ -262,6 +321,9 @@ faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<Triang
 /// `vertices` receives the descriptor of each compact vertex index, so results can be written
 /// back through any vertex property map; `face_descriptors`, when given, that of each face,
 /// whose corners follow `halfedges_around_face(halfedge(f))` (corner c = target of the c-th).
+/// The points are normalised by `normalisation` when given (several components in one
+/// frame), else centred and scaled to the component's own bounding box; UVs computed from
+/// the index are multiplied by `index.normalisation.scale` to be in the mesh's units.
 template <class TriangleMesh, class VertexPointMap>
 Index_status index_mesh(const TriangleMesh& mesh,
                         typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
@@ -269,7 +331,8 @@ Index_status index_mesh(const TriangleMesh& mesh,
                         std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&
                           vertices,
                         std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>*
-                          face_descriptors = nullptr)
+                          face_descriptors = nullptr,
+                        const Normalisation* normalisation = nullptr)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
@@ -316,6 +379,16 @@ Index_status index_mesh(const TriangleMesh& mesh,
       return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with fewer than 3 sides"};
     index.faces.push_back(tri);
   }
+
+  // Finite coordinates first, named by the vertex, before they enter a bounding box.
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    for(double x : index.points[v])
+      if(!std::isfinite(x))
+        return {ERROR_WRONG_PARAMETER,
+                "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
+  index.normalisation = normalisation ? *normalisation : normalisation_of(index.points);
+  for(auto& p : index.points)
+    p = index.normalisation.apply(p);
 
   Index_status status = build_connectivity(index);
   if(!status.ok())
