@@ -269,7 +269,7 @@ TEST(EnergyOptimizer, BothOptimizersReachTheSameOptimum)
     ASSERT_TRUE(a.converged) << name << ": " << a.message;
     ICM::Curvature_space_options options;
     options.tolerance = 1e-8;
-    options.max_iterations = 20000;
+    options.max_iterations = 5000;
     options.newton.tolerance = 1e-13; // the inner K^{-1} limits how flat (grad_k E)_S can get
     const ICM::Curvature_space_report b =
       ICM::minimize_energy_by_projected_gradient(index, metric, S, energy, reference, options);
