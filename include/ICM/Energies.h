@@ -776,7 +776,7 @@ struct Angle_distortion
 enum class Face_weighting
 {
   Area,   ///< by 3D area, sum_f A_f log^2(...) / sum_f A_f: the integral over the surface
-  Uniform ///< one per face, sum_f log^2(...) / #faces: paper eq. 8 as Table I reports it
+  Uniform ///< one per face, sum_f log^2(...) / (number of faces): paper eq. 8 as Table I reports it
 };
 
 /// The log area distortion of Table I (eq. 8), optimised directly: sum_f w_f log^2(s_f / A_f)
