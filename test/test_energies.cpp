@@ -308,7 +308,7 @@ TEST(EnergyOptimizer, AFrozenTriangulationReachesTheOptimumWithFlips)
     ASSERT_TRUE(b.converged) << name << ": " << b.message;
     EXPECT_GE(b.refreshes, 1) << name;
     EXPECT_LT((frozen - flipping).cwiseAbs().maxCoeff(), 1e-5) << name;
-    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-8 * a.final_energy) << name;
+    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-7 * a.final_energy) << name;
     // Flat off S for the metric with flips.
     ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
     Eigen::VectorXd k;
