@@ -73,6 +73,8 @@ public:
       return 0;
   }
   const Metric& metric() const { return metric_; }
+  /// The metric's own copy, e.g. to freeze its triangulation (`Intrinsic_delaunay_metric`).
+  Metric& metric() { return metric_; }
 
   /// Edge lengths of the metric at `u` (flipping its triangulation first if it has one);
   /// also kept for `lengths()`.

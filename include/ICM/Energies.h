@@ -173,8 +173,11 @@ public:
   Energy_state(internal::Mesh_index&&) = delete; // holds a reference
 
   /// Measures the metric of `curvature` at `u` (flipping its triangulation first if it has
-  /// one). Returns false when some face of the metric is not a triangle at u.
-  bool update(Curvature_map<Metric>& curvature, const Eigen::VectorXd& u)
+  /// one). Returns false when some face of the metric is not a triangle at u. With
+  /// `measure_faces` false the mesh's faces are not measured (for a metric with its own
+  /// triangulation: not developed), only the metric's lengths, weights and curvature, which
+  /// is all a Newton step needs; `measure_faces()` completes the state.
+  bool update(Curvature_map<Metric>& curvature, const Eigen::VectorXd& u, bool measure_faces = true)
   {
     curvature_ = &curvature;
     u_ = u;
@@ -202,11 +205,18 @@ public:
         k_[v[c]] -= geometry_[f].angles.angle[c];
       }
     }
+    if(measure_faces)
+      this->measure_faces();
+    return invalid_faces_ == 0;
+  }
+
+  /// Measures the mesh's faces at the metric of the last `update`.
+  void measure_faces()
+  {
     if constexpr(develops_faces)
-      measure_developed_faces(t);
+      measure_developed_faces(curvature_->mesh_index());
     else
       measure_metric_faces();
-    return invalid_faces_ == 0;
   }
 
   const internal::Mesh_index& mesh() const { return mesh_; }

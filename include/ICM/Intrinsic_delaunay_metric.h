@@ -223,8 +223,17 @@ public:
   const internal::Mesh_index& triangulation() const { return triangulation_; }
 
   /// Flips the triangulation to be Delaunay for the factors `g` = exp(u) (Ptolemy flips, the
-  /// metric does not change); returns the number of flips.
-  int make_delaunay(const std::vector<double>& g) { return flip_to_delaunay(g, Flip_rule::Ptolemy); }
+  /// metric does not change); returns the number of flips. Flips nothing while frozen.
+  int make_delaunay(const std::vector<double>& g)
+  {
+    return frozen_ ? 0 : flip_to_delaunay(g, Flip_rule::Ptolemy);
+  }
+
+  /// While frozen the triangulation is kept: the metric is vertex scaling on it (valid where
+  /// its faces are triangles), a smooth function of u whose Laplacian keeps its pattern. The
+  /// energy optimizers freeze it between the steps where they flip (Curvature_space_optimizer.h).
+  void freeze_triangulation(bool frozen) { frozen_ = frozen; }
+  bool is_frozen() const { return frozen_; }
 
   /// Flips made so far, counting those that made the mesh Delaunay: a version number of the
   /// triangulation's connectivity.
@@ -295,6 +304,7 @@ private:
   std::vector<internal::Delaunay_half> halves_;
   long flips_ = 0;
   int mesh_flips_ = 0;
+  bool frozen_ = false;
 };
 
 /// The metric of ICM's parameterizers when none is named: the one whose maps came out most
