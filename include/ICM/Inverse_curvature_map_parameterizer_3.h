@@ -483,9 +483,10 @@ private:
     // The metric's own triangulation (the mesh's, or its intrinsic Delaunay one) is laid
     // out; it has the mesh's vertices, so its UVs are the mesh's.
     const internal::Mesh_index& triangulation = curvature.mesh_index();
-    // The harmonic layout walks one border loop; a circle domain with holes is propagated.
+    // The harmonic layout solves with the Newton system's Laplacian, the Dirichlet problem's
+    // only with a free border (a prescribed border's pins one vertex): those are propagated.
     const bool harmonic =
-      index.is_disk() &&
+      !border.prescribes_border() &&
       (options_.layout == Layout_method::Harmonic ||
        (options_.layout == Layout_method::Automatic &&
         index.number_of_faces() >= options_.harmonic_layout_min_faces));
