@@ -148,7 +148,10 @@ struct Parameterization_report
 /// halfedge `bhd`; it must be a topological disk (one border, genus 0): a `CGAL::Seam_mesh`
 /// whose seams cut a surface into a disk qualifies. Every boundary vertex is singular (free
 /// boundary) and every interior vertex flat; the result is the minimum of the curvature
-/// entropy in the conformal class of `Metric`, laid out isometrically. All UVs are written
+/// entropy in the conformal class of `Metric`, laid out isometrically. Another
+/// `BorderCondition` prescribes the border instead (a rectangle, a circle, given turning
+/// angles), and `Circle_domain` also takes genus 0 with several border loops, mapped onto
+/// nested circles without a cut (doc/border_conditions.md). All UVs are written
 /// and every vertex is marked parameterized.
 ///
 /// When the optimum cannot be reached in the class of `Metric` (vertex scaling or inversive
