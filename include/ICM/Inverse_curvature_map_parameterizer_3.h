@@ -8,6 +8,7 @@
 #ifndef ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 #define ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 
+#include <ICM/Border_conditions.h>
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Curvature_space_optimizer.h>
@@ -122,10 +123,21 @@ struct Parameterization_report
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
   double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
   int flipped_faces = 0;
+  /// A prescribed border with straight sides (a square): the faces whose three corners lie on
+  /// one side, laid out as segments whatever the metric (an "ear" on a side; CGAL's square
+  /// border makes them degenerate too). Not counted in `flipped_faces`.
+  int degenerate_faces = 0;
   /// Vertices moved off the metric's layout to unflip a face of the mesh that its intrinsic
   /// triangulation does not have (see `unflip_by_moving_vertices`).
   int moved_vertices = 0;
   std::string layout;                    ///< "propagation" or "harmonic"
+  /// The border condition's name ("free", "prescribed-curvature", "square", "circle",
+  /// "polygon", "circle-domain"; doc/border_conditions.md).
+  std::string border_condition;
+  /// Circle borders: the outer iterations u <- K^{-1}(T(u)), and the largest relative
+  /// distance of a border vertex's UV from its loop's fitted circle (`max_circle_deviation`).
+  int border_iterations = 0;
+  double circle_deviation = 0;
   double seconds_index = 0, seconds_metric = 0, seconds_optimum = 0, seconds_layout = 0,
          seconds_total = 0;
 };
@@ -136,7 +148,10 @@ struct Parameterization_report
 /// halfedge `bhd`; it must be a topological disk (one border, genus 0): a `CGAL::Seam_mesh`
 /// whose seams cut a surface into a disk qualifies. Every boundary vertex is singular (free
 /// boundary) and every interior vertex flat; the result is the minimum of the curvature
-/// entropy in the conformal class of `Metric`, laid out isometrically. All UVs are written
+/// entropy in the conformal class of `Metric`, laid out isometrically. Another
+/// `BorderCondition` prescribes the border instead (a rectangle, a circle, given turning
+/// angles), and `Circle_domain` also takes genus 0 with several border loops, mapped onto
+/// nested circles without a cut (doc/border_conditions.md). All UVs are written
 /// and every vertex is marked parameterized.
 ///
 /// When the optimum cannot be reached in the class of `Metric` (vertex scaling or inversive
@@ -158,8 +173,13 @@ struct Parameterization_report
 ///         u_S = u0_S (the free-boundary optimum). Any other energy is minimised over the
 ///         free-boundary admissible metrics by `minimize_energy_on_singular_values`, started
 ///         from that optimum (options: `Parameterization_options::energy`).
+/// \tparam BorderCondition `Free_border`, `Prescribed_border_curvature`, `Border_shape` or
+///         `Circle_domain` (Border_conditions.h, doc/border_conditions.md); `CGAL::Default` is
+///         `Free_border`. Any other condition prescribes the border, which leaves the energy
+///         nothing to choose: it then needs the default `Energy`. `Circle_domain` also takes
+///         a genus-0 mesh with several border loops, laid out without a cut.
 template <class TriangleMesh, class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default,
-          class Energy_ = CGAL::Default>
+          class Energy_ = CGAL::Default, class BorderCondition = CGAL::Default>
 class Inverse_curvature_map_parameterizer_3
 {
 public:
@@ -167,18 +187,22 @@ public:
   using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
   using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
   using Energy = typename CGAL::Default::Get<Energy_, Curvature_entropy>::type;
+  using Border_condition = typename CGAL::Default::Get<BorderCondition, Free_border>::type;
   /// Whether the energy needs the optimizer (the entropy's minimum is the Dirichlet problem).
   static constexpr bool optimizes_energy = !std::is_same<Energy, Curvature_entropy>::value;
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
 
-  /// A parameterizer with these options (doc/parameterizer.md) minimising `energy`.
+  /// A parameterizer with these options (doc/parameterizer.md) minimising `energy` under
+  /// the border condition `border` (doc/border_conditions.md).
   explicit Inverse_curvature_map_parameterizer_3(
-    const Parameterization_options& options = Parameterization_options(), const Energy& energy = Energy())
-    : options_(options), energy_(energy), report_(std::make_shared<Parameterization_report>())
+    const Parameterization_options& options = Parameterization_options(), const Energy& energy = Energy(),
+    const Border_condition& border = Border_condition())
+    : options_(options), energy_(energy), border_(border), report_(std::make_shared<Parameterization_report>())
   {}
 
   const Energy& energy() const { return energy_; }
+  const Border_condition& border_condition() const { return border_; }
 
   /// The options of the next `parameterize()` call.
   Parameterization_options& options() { return options_; }
@@ -192,7 +216,7 @@ public:
   /// true for every vertex that receives a UV.
   template <class VertexUVMap, class VertexIndexMap, class VertexParameterizedMap>
   Error_code parameterize(TriangleMesh& mesh, halfedge_descriptor bhd, VertexUVMap uvmap,
-                          VertexIndexMap /* vimap */, VertexParameterizedMap vpmap)
+                          VertexIndexMap vimap, VertexParameterizedMap vpmap)
   {
     using namespace CGAL::Surface_mesh_parameterization;
     Run run(*report_);
@@ -212,14 +236,19 @@ public:
                            index, vertices);
     run.report_topology(index);
     run.report.energy = energy_name<Energy>();
+    run.report.border_condition = border_.name();
     run.report.seconds_index = run.lap();
     if(!indexed.ok())
       return run.fail(indexed.code, indexed.message);
-    if(!index.is_disk())
-      return run.fail(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk");
+    Border_target border;
+    if(const Error_code refused = border_target(mesh, bhd, index, vertices, vimap, border); refused != OK)
+      return run.fail(refused, border.message);
     if constexpr(internal::Is_seam_mesh<TriangleMesh>::value)
       if(options_.seams == Seam_reading::Cut)
       {
+        if(border.prescribes_border())
+          return run.fail(ERROR_WRONG_PARAMETER, "the border condition \"" + border_.name() +
+                                                   "\" is not available with Seam_reading::Cut: only \"free\"");
         if(optimizes_energy)
           return run.fail(ERROR_WRONG_PARAMETER, std::string("the energy \"") + energy_name<Energy>() +
                                                    "\" is not available with Seam_reading::Cut (cones): only the entropy");
@@ -228,13 +257,13 @@ public:
 
     // Steps 1-7 in the class of `Metric`, then in the circle packing's if it cannot get there.
     std::vector<Uv> uv;
-    Error_code status = optimum_and_layout<Metric>(index, run, uv);
+    Error_code status = optimum_and_layout<Metric>(index, border, run, uv);
     if(status != OK && !std::is_same<Metric, Circle_packing_metric>::value &&
        options_.fall_back_to_circle_packing)
     {
       run.report.fallback_reason = std::string(Metric::name) + ": " + run.report.message;
       run.report.message.clear();
-      status = optimum_and_layout<Circle_packing_metric>(index, run, uv);
+      status = optimum_and_layout<Circle_packing_metric>(index, border, run, uv);
     }
     if(status != OK)
       return run.fail(status, run.report.message);
@@ -252,6 +281,41 @@ public:
 
 private:
   struct Run;
+
+  /// What the border condition asks on this mesh, or why it cannot hold: the topology each
+  /// condition needs, and the energy (a prescribed border leaves it nothing to choose).
+  template <class VertexIndexMap>
+  Error_code border_target(const TriangleMesh& mesh, halfedge_descriptor bhd, const internal::Mesh_index& index,
+                           const std::vector<vertex_descriptor>& vertices, VertexIndexMap vimap,
+                           Border_target& border) const
+  {
+    using namespace CGAL::Surface_mesh_parameterization;
+    const std::string name = "the border condition \"" + border_.name() + "\"";
+    constexpr bool several_loops = std::is_same<Border_condition, Circle_domain>::value;
+    if(index.genus() != 0)
+    {
+      border.message = internal::describe_topology(index) + ": not a disk" +
+                       (several_loops ? " (" + name + " needs genus 0)" : std::string());
+      return ERROR_NO_TOPOLOGICAL_DISC;
+    }
+    if(!several_loops && !index.is_disk())
+    {
+      border.message = internal::describe_topology(index) + ": not a disk (" + name +
+                       " needs one border loop; Circle_domain maps several without a cut)";
+      return ERROR_NO_TOPOLOGICAL_DISC;
+    }
+    border = border_.target(mesh, bhd, index, vertices, vimap);
+    if(!border.ok())
+      return border.status;
+    if(border.prescribes_border() && optimizes_energy)
+    {
+      border.message = std::string("the energy \"") + energy_name<Energy>() + "\" cannot be minimised with " + name +
+                       ": a prescribed border leaves a single admissible metric (no interior cones on this "
+                       "path), so only the default entropy applies";
+      return ERROR_WRONG_PARAMETER;
+    }
+    return OK;
+  }
 
   /// `Seam_reading::Cut`: the surface under the seam mesh, cut along its seams and nothing
   /// else, by `ICM::parameterize`; each seam-mesh vertex takes the UV of its corners. Every
@@ -348,7 +412,8 @@ private:
   /// optimum (S = border, N = interior), and the checked isometric layout into `uv`. Sets the
   /// report's message and returns the error code on failure.
   template <class M>
-  Error_code optimum_and_layout(const internal::Mesh_index& index, Run& run, std::vector<Uv>& uv)
+  Error_code optimum_and_layout(const internal::Mesh_index& index, const Border_target& border, Run& run,
+                                std::vector<Uv>& uv)
   {
     using namespace CGAL::Surface_mesh_parameterization;
     Parameterization_report& report = run.report;
@@ -359,12 +424,21 @@ private:
     report.seconds_metric += run.lap();
 
     stage("optimum");
-    std::vector<char> is_interior(index.number_of_vertices());
+    // Free border: the Dirichlet problem on the interior. A prescribed border: every vertex
+    // free but one, which fixes the scale (its equation holds by Gauss-Bonnet).
+    std::vector<char> is_free(index.number_of_vertices());
     for(int v = 0; v < index.number_of_vertices(); ++v)
-      is_interior[v] = !index.is_boundary_vertex[v];
-    Inverse_curvature_map<Solver, M> solver(index, metric, is_interior);
+      is_free[v] = border.prescribes_border() ? v != 0 : !index.is_boundary_vertex[v];
+    Inverse_curvature_map<Solver, M> solver(index, metric, is_free);
     Eigen::VectorXd u;
-    if(options_.optimum == Optimum_method::Newton)
+    if(border.prescribes_border())
+    {
+      const Error_code status = prescribed_border_optimum(index, metric, border, solver, u, report);
+      report.seconds_optimum += run.lap();
+      if(status != OK)
+        return status;
+    }
+    else if(options_.optimum == Optimum_method::Newton)
     {
       const Newton_report newton = free_boundary_optimum(solver, metric, u, options_.newton);
       report.newton_iterations = newton.iterations;
@@ -393,10 +467,13 @@ private:
 
     if constexpr(optimizes_energy)
     {
-      const Error_code status = minimize_energy(index, metric, solver, u, report);
-      report.seconds_optimum += run.lap();
-      if(status != OK)
-        return status;
+      if(!border.prescribes_border()) // refused before: a prescribed border has no choice left
+      {
+        const Error_code status = minimize_energy(index, metric, solver, u, report);
+        report.seconds_optimum += run.lap();
+        if(status != OK)
+          return status;
+      }
     }
 
     stage("layout");
@@ -409,10 +486,13 @@ private:
     // The metric's own triangulation (the mesh's, or its intrinsic Delaunay one) is laid
     // out; it has the mesh's vertices, so its UVs are the mesh's.
     const internal::Mesh_index& triangulation = curvature.mesh_index();
+    // The harmonic layout solves with the Newton system's Laplacian, the Dirichlet problem's
+    // only with a free border (a prescribed border's pins one vertex): those are propagated.
     const bool harmonic =
-      options_.layout == Layout_method::Harmonic ||
-      (options_.layout == Layout_method::Automatic &&
-       index.number_of_faces() >= options_.harmonic_layout_min_faces);
+      !border.prescribes_border() &&
+      (options_.layout == Layout_method::Harmonic ||
+       (options_.layout == Layout_method::Automatic &&
+        index.number_of_faces() >= options_.harmonic_layout_min_faces));
     if(harmonic)
     {
       report.layout = "harmonic";
@@ -427,12 +507,28 @@ private:
     Layout_check check = check_layout(triangulation, lengths, uv);
     if(&triangulation != &index && check.flipped_faces == 0)
     {
-      report.moved_vertices =
-        unflip_by_moving_vertices(index, uv, std::vector<char>(index.number_of_vertices(), 1));
+      // A prescribed border stays where the metric put it (a moved border vertex would
+      // leave its circle or its rectangle's side): only interior vertices move.
+      std::vector<char> is_movable(index.number_of_vertices(), 1);
+      if(border.prescribes_border())
+        for(int v = 0; v < index.number_of_vertices(); ++v)
+          is_movable[v] = !index.is_boundary_vertex[v];
+      report.moved_vertices = unflip_by_moving_vertices(index, uv, is_movable);
       check.flipped_faces = count_flipped_faces(index, uv);
+    }
+    if(border.kind == Border_kind::Prescribed_curvature)
+    {
+      // Faces with three corners on one straight side are segments in any such layout:
+      // counted apart (exactly flat on a rectangle) rather than as flipped.
+      internal::make_rectangle_sides_exact(index, border.curvature, uv);
+      const std::vector<int> flat = internal::faces_on_a_straight_stretch(index, border.curvature);
+      report.degenerate_faces = static_cast<int>(flat.size());
+      check.flipped_faces = count_flipped_faces(index, uv) - internal::count_flipped_faces_among(index, uv, flat);
     }
     report.flipped_faces = check.flipped_faces;
     report.max_layout_length_error = check.max_relative_length_error;
+    if(border.kind == Border_kind::Circles)
+      report.circle_deviation = max_circle_deviation(index, uv);
     report.seconds_layout += run.lap();
     if(check.flipped_faces > 0)
     {
@@ -446,6 +542,29 @@ private:
       return ERROR_NO_1_TO_1_MAPPING;
     }
     return OK;
+  }
+
+  /// Step 5 for a prescribed border: Algorithm 1 for a given curvature, or the circle
+  /// domain's fixed point, from u0. Fills the report's Newton figures.
+  template <class M>
+  Error_code prescribed_border_optimum(const internal::Mesh_index& index, const M& metric, const Border_target& border,
+                                       Inverse_curvature_map<Solver, M>& solver, Eigen::VectorXd& u,
+                                       Parameterization_report& report)
+  {
+    u = metric.u0;
+    const Border_solve_report solved = border.kind == Border_kind::Circles
+                                         ? solve_circle_domain(solver, index, border, u, options_.newton)
+                                         : solve_prescribed_border(solver, border.curvature, u, options_.newton);
+    report.newton_iterations = solved.newton_iterations;
+    report.border_iterations = solved.outer_iterations;
+    report.residual_history = solved.residual_history;
+    report.max_curvature_error = solved.final_residual();
+    if(!solved.converged)
+    {
+      report.message = solved.message;
+      return CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
+    }
+    return CGAL::Surface_mesh_parameterization::OK;
   }
 
   /// Step 5 for an energy other than the entropy, from the entropy optimum `u`. An optimizer
@@ -479,6 +598,7 @@ private:
 
   Parameterization_options options_;
   Energy energy_;
+  Border_condition border_;
   std::shared_ptr<Parameterization_report> report_;
 };
 
