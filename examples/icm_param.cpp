@@ -559,6 +559,20 @@ std::string why_not_a_disk(Mesh& mesh)
                     : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
 }
 
+/// An energy other than the entropy on the disk `mesh`, chosen by its name; each energy's
+/// parameterizer is instantiated in its own file (icm_param_energy_*.cpp).
+ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
+{
+  using namespace icm_param;
+  if(args.energy == ICM::U_square::name)
+    return parameterize_disk<ICM::U_square>(mesh, args.metric, uvmap);
+  if(args.energy == ICM::Area_distortion::name)
+    return parameterize_disk<ICM::Area_distortion>(mesh, args.metric, uvmap);
+  if(args.energy == ICM::Angle_distortion::name)
+    return parameterize_disk<ICM::Angle_distortion>(mesh, args.metric, uvmap);
+  return parameterize_disk<ICM::Log_area_distortion>(mesh, args.metric, uvmap);
+}
+
 /// The entropy on any surface, by `ICM::parameterize` (cones and seams where needed): the
 /// figures of its run into `figures`, or the reason it failed.
 std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<Mesh::Vertex_index, double>& cones,
@@ -640,8 +654,7 @@ int run(const Arguments& args, const Failure_report& fail)
                                 " needs a disk (one component, one boundary loop, genus 0), and " + not_a_disk +
                                 ": energies other than the entropy are not available on surfaces cut through "
                                 "cones yet (leave out --energy for the entropy)");
-    const ICM::Parameterization_report report =
-      icm_param::parameterize_disk_with_energy(mesh, args.energy, args.metric, uvmap);
+    const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
     if(report.status != SMP::OK)
       return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
     figures.emplace(report);

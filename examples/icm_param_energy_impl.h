@@ -11,7 +11,7 @@
 #include <ICM/Inversive_distance_metric.h>
 #include <ICM/Vertex_scaling_metric.h>
 
-#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 
 namespace icm_param {
