@@ -651,8 +651,8 @@ TEST(Cli, EnergyConflictsWithConesAndSeams)
 {
   Sandbox box;
   const std::string input = quote(data_path("nefertiti.off"));
-  for(const std::string options : {"--cone 100:90", "--cones auto", "--cones 4",
-                                   "--seams " + quote(data_path("sphere966.selection.txt"))})
+  for(const std::string& options : std::vector<std::string>{"--cone 100:90", "--cones auto", "--cones 4",
+                                                            "--seams " + quote(data_path("sphere966.selection.txt"))})
   {
     const Sandbox::Result r = box.run(input + " -o out.obj --energy log-area " + options);
     EXPECT_EQ(r.exit_code, 2) << options;
