@@ -5,7 +5,9 @@
 //   compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c] [--subdivide K]
 //           [--open] [--svg-panels FILE] [--quiet] MESH...
 //
-// A topological disk goes through CGAL's parameterize() with every method of the registry.
+// A topological disk goes through CGAL's parameterize() with every method of the registry
+// (ICM's rows, in each metric and with each energy, show the report's optimum time and the
+// energy optimizer's steps and values).
 // Any other connected mesh (closed, genus > 0, several boundary loops) is parameterized by
 // ICM's one call, ICM::parameterize() (row `icm`: cones, cut, optimum, layout); CGAL's
 // methods then run on a CGAL::Seam_mesh cut along ICM's seams (the same cut), and a closed
@@ -116,7 +118,9 @@ struct Run_result {
   std::optional<int> newton_iterations;  // ICM only
   std::string metric;                    // ICM only: the metric of the result (after a fallback)
   std::string fallback_reason;           // ICM only: why the requested metric was not used
-  std::vector<std::pair<std::string, double>> stage_seconds;  // ICM only: the report's times
+  // ICM only: the report's times and, for an energy other than the entropy, its optimizer's
+  // steps and values (energy_iterations, initial_energy, final_energy).
+  std::vector<std::pair<std::string, double>> report_numbers;
 };
 
 struct Method {
@@ -157,13 +161,25 @@ Method icm_method(std::string name) {
             r.message = report.message;
             r.metric = report.metric;
             r.fallback_reason = report.fallback_reason;
-            r.stage_seconds = {{"seconds_index", report.seconds_index},
-                               {"seconds_metric", report.seconds_metric},
-                               {"seconds_optimum", report.seconds_optimum},
-                               {"seconds_layout", report.seconds_layout},
-                               {"seconds_total", report.seconds_total}};
+            r.report_numbers = {{"seconds_index", report.seconds_index},
+                                {"seconds_metric", report.seconds_metric},
+                                {"seconds_optimum", report.seconds_optimum},
+                                {"seconds_layout", report.seconds_layout},
+                                {"seconds_total", report.seconds_total}};
+            if (Parameterizer::optimizes_energy)
+              r.report_numbers.insert(r.report_numbers.end(),
+                                      {{"energy_iterations", report.energy_iterations},
+                                       {"initial_energy", report.initial_energy},
+                                       {"final_energy", report.final_energy}});
             return r;
           }};
+}
+
+// ICM's free-boundary parameterizer minimising `Energy` instead of the curvature entropy.
+template <class Energy>
+Method icm_energy_method(std::string name) {
+  return icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, CGAL::Default, CGAL::Default, Energy>>(
+      std::move(name));
 }
 
 // Add a method here with one line; its name is what --methods selects.
@@ -176,6 +192,12 @@ std::vector<Method> make_registry() {
           "icm_inversive_distance"),
       icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, ICM::Circle_packing_metric>>(
           "icm_circle_packing"),
+      // The other energies, minimised over the free-boundary maps from the entropy optimum
+      // (icm_free_boundary), default metric.
+      icm_energy_method<ICM::U_square>("icm_u_square"),
+      icm_energy_method<ICM::Area_distortion>("icm_area"),
+      icm_energy_method<ICM::Angle_distortion>("icm_angle"),
+      icm_energy_method<ICM::Log_area_distortion>("icm_log_area"),
       cgal_method<SMP::LSCM_parameterizer_3<Mesh>>("lscm"),
       cgal_method<SMP::ARAP_parameterizer_3<Mesh>>("arap"),
       cgal_method<SMP::Discrete_conformal_map_parameterizer_3<Mesh>>("dcm"),
@@ -242,9 +264,12 @@ const char* usage_text =
     "               [--quiet] MESH...\n"
     "\n"
     "Runs each parameterization method on each mesh (OFF/OBJ/PLY) and prints the paper's\n"
-    "Table I plus time, memory and flips as Markdown (or JSON lines). A mesh that is not a\n"
-    "disk gets ICM::parameterize() (row icm) and CGAL's methods on a seam mesh cut along\n"
-    "ICM's seams; a closed genus-0 mesh also icm_free_boundary_opened.\n"
+    "Table I plus time, memory and flips as Markdown (or JSON lines). A disk gets every\n"
+    "method of the registry: ICM's free boundary in each metric (icm_free_boundary,\n"
+    "icm_vertex_scaling, icm_inversive_distance, icm_circle_packing), ICM's other energies\n"
+    "(icm_u_square, icm_area, icm_angle, icm_log_area) and CGAL's lscm, arap, dcm, dac, mvc.\n"
+    "A mesh that is not a disk gets ICM::parameterize() (row icm) and CGAL's methods on a\n"
+    "seam mesh cut along ICM's seams; a closed genus-0 mesh also icm_free_boundary_opened.\n"
     "\n"
     "  --json             one JSON object per (mesh, method) on stdout instead of Markdown\n"
     "  --runs N           timed runs per method, median reported (default: 3 if one run\n"
@@ -587,7 +612,7 @@ Job method_job(const Mesh& input, const Method& method) {
     r.newton_iterations = run.newton_iterations;
     r.metric = run.metric;
     r.message = run.message;
-    r.extra = run.stage_seconds;
+    r.extra = run.report_numbers;
     r.fallback_reason = run.fallback_reason;
     if (measure && has_usable_uvs(run.code)) {
       r.m = to_measures(ICM::measure_distortion(mesh, uvmap));
@@ -787,10 +812,6 @@ Row run_job(const Job& job, const std::string& name, const Options& opt, Row row
     for (auto& [key, value] : first_result->extra)
       if (stage_times.count(key)) value = median(stage_times[key]);
   return row;
-}
-
-Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row row) {
-  return run_job(method_job(mesh, method), method.name, opt, std::move(row));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -1218,6 +1239,29 @@ void add_icm_report(Row& row, const Child_result& result) {
   row.note = buf;
   if (x("border_crossings") > 0)
     row.note += "; " + count_text(x("border_crossings")) + " border crossings";
+}
+
+// ICM's report on a disk: its numbers as JSON keys; the optimum's time and, for an energy
+// other than the entropy, the optimizer's steps and values in the Markdown status.
+void add_disk_icm_report(Row& row, const Child_result& result) {
+  auto is_count = [](const std::string& key) { return key == "energy_iterations"; };
+  for (const auto& [key, value] : result.extra)
+    row.json_extra.emplace_back(key, is_count(key) ? json_count(value) : json_num(value));
+  if (result.extra.empty() || row.status.rfind("ok", 0) != 0) return;
+  row.note = "optimum " + fmt_seconds(extra_value(result, "seconds_optimum")) + " s";
+  const double steps = extra_value(result, "energy_iterations");
+  if (!std::isfinite(steps)) return;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "; %.0f energy steps, E %.4g -> %.4g", steps,
+                extra_value(result, "initial_energy"), extra_value(result, "final_energy"));
+  row.note += buf;
+}
+
+Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row row) {
+  Child_result result;
+  row = run_job(method_job(mesh, method), method.name, opt, std::move(row), &result);
+  add_disk_icm_report(row, result);
+  return row;
 }
 
 // Default rows of a mesh that is not a disk: ICM's one call, CGAL's methods on its cut and,

@@ -4,8 +4,15 @@
 //
 //   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
+//             [--energy entropy|u-square|area|angle|log-area]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
 //             [--keep-overlaps]          (icm_param --help for all)
+//
+// The default energy, the curvature entropy, goes through ICM::parameterize (every surface).
+// Any other energy is minimised over the free-boundary conformal maps of a disk by
+// Inverse_curvature_map_parameterizer_3 (icm_param_energy.h): a mesh that is not one disk,
+// or cones and seams, are refused with it, because the energy optimizers do not work on a
+// surface cut through cones yet.
 //
 // The input is untrusted: it is read by ICM's own checked readers (IO/read_polygon_soup.h),
 // repaired only as users expect (isolated vertices dropped, non-manifold vertices split,
@@ -25,6 +32,10 @@
 #include <ICM/IO/write_uv_files.h>
 #include <ICM/parameterize.h>
 
+#include "icm_param_energy.h"
+
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/version.h>
@@ -42,6 +53,7 @@
 #include <iostream>
 #include <map>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,8 +68,8 @@
 
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Kernel = icm_param::Kernel;
+using Mesh = icm_param::Mesh;
 namespace SMP = CGAL::Surface_mesh_parameterization;
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
@@ -70,13 +82,16 @@ struct Arguments
   std::string input, output, svg, seams;
   bool json = false, keep_overlaps = false, triangulate = false, quiet = false;
   std::string metric = ICM::Default_metric::name;
+  std::string energy = ICM::Curvature_entropy::name;
   int max_cones = -1;                        // -1: automatic
+  bool cones_asked = false;                  // --cones auto or N > 0 given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
 };
 
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
+  "         [--energy entropy|u-square|area|angle|log-area]\n"
   "         [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "       icm_param --help | --version\n";
 
@@ -169,6 +184,33 @@ int usage_error(const std::string& reason, const Failure_report& fail)
   return code;
 }
 
+/// What --energy takes: the entropy (ICM::parameterize, every surface), then the energies
+/// minimised on disks (icm_param_energy.h).
+std::vector<std::string> energy_names()
+{
+  return {ICM::Curvature_entropy::name, ICM::U_square::name, ICM::Area_distortion::name,
+          ICM::Angle_distortion::name, ICM::Log_area_distortion::name};
+}
+
+bool optimizes_energy(const Arguments& args) { return args.energy != ICM::Curvature_entropy::name; }
+
+/// Why the options cannot go with the energy, or empty: an energy other than the entropy is
+/// minimised on a disk with a free boundary, where cones and seams have no place.
+std::string energy_conflict(const Arguments& args)
+{
+  if(!optimizes_energy(args))
+    return {};
+  const char* option = !args.cones.empty() ? "--cone"
+                       : !args.seams.empty() ? "--seams"
+                       : args.cones_asked    ? "--cones"
+                                             : nullptr;
+  if(option == nullptr)
+    return {};
+  return std::string(option) + " cannot go with --energy " + args.energy +
+         ": energies other than the entropy are minimised on disks with a free boundary only, "
+         "without cones or seams (leave out --energy for the entropy)";
+}
+
 /// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
 /// --help or --version, 2 on a usage error, which `fail` has reported).
 int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report& fail)
@@ -192,6 +234,11 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.add_option("--metric", args.metric, "the discrete conformal metric (default " + args.metric + ")")
     ->check(CLI::IsMember({ICM::Intrinsic_delaunay_metric::name, ICM::Vertex_scaling_metric::name,
                            ICM::Inversive_distance_metric::name, ICM::Circle_packing_metric::name}))
+    ->type_name("NAME");
+  app.add_option("--energy", args.energy,
+                 "the energy minimised (default " + args.energy +
+                   "); any other minimises it over the free-boundary maps of a disk, without cones or seams")
+    ->check(CLI::IsMember(energy_names()))
     ->type_name("NAME");
   app.add_option("--cones", cones_text, "automatic interior cones: 'auto' (default) or at most N, 0 for none")
     ->check(cone_count_validator())
@@ -234,12 +281,16 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                        fail);
   if(!cones_text.empty() && cones_text != "auto")
     args.max_cones = std::atoi(cones_text.c_str());
+  args.cones_asked = !cones_text.empty() && args.max_cones != 0;
   for(const std::string& text : cone_texts)
   {
     std::pair<int, double> cone;
     parse_cone(text, cone);
     args.cones.push_back(cone);
   }
+  const std::string conflict = energy_conflict(args);
+  if(!conflict.empty())
+    return usage_error(conflict, fail);
   return -1;
 }
 
@@ -343,14 +394,31 @@ private:
 
 // --- output ----------------------------------------------------------------------------
 
-/// Totals over the charts, and the worst of each check.
-struct Chart_totals
+/// What the JSON line and the summary line tell of a run, from either parameterizer's report:
+/// totals over the charts and the worst of each check.
+struct Run_figures
 {
-  int cones = 0, genus = 0, loops = 0, newton = 0, overlaps = 0, raw_overlaps = 0, pieces = 0, moved = 0;
+  int charts = 1, components = 1, cones = 0, genus = 0, loops = 0, newton = 0, moved = 0;
+  /// Pairs of crossing border edges; not counted by the disk parameterizer (null in JSON).
+  std::optional<int> overlaps, raw_overlaps;
+  std::size_t seam_edges = 0;
   double curvature_error = 0, length_error = 0, seam_error = 0;
-  std::string metrics, fallbacks;
+  std::string metrics, fallbacks, layout = "propagation";
+  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_parameterize = 0;
+  std::string energy = ICM::Curvature_entropy::name;
+  /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
+  /// at the result, and why it stopped early (empty if it converged).
+  bool optimized_energy = false;
+  int energy_iterations = 0;
+  double initial_energy = 0, final_energy = 0;
+  std::string energy_message;
 
-  explicit Chart_totals(const ICM::Surface_parameterization_report& report)
+  /// `ICM::parameterize`'s run (the entropy) with `seam_edges` cut.
+  Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_)
+    : charts(0), components(static_cast<int>(report.charts.size())), overlaps(0), raw_overlaps(0),
+      seam_edges(seam_edges_), seconds_cones(report.seconds_cones), seconds_optimum(report.seconds_optimum),
+      seconds_cut(report.seconds_cut), seconds_layout(report.seconds_layout),
+      seconds_parameterize(report.seconds_total)
   {
     for(const ICM::Chart_report& c : report.charts)
     {
@@ -358,9 +426,9 @@ struct Chart_totals
       genus += c.genus;
       loops += c.boundary_loops;
       newton = std::max(newton, c.newton_iterations);
-      overlaps += c.overlapping_border_edges;
-      raw_overlaps += c.raw_overlapping_border_edges;
-      pieces += c.pieces;
+      *overlaps += c.overlapping_border_edges;
+      *raw_overlaps += c.raw_overlapping_border_edges;
+      charts += c.pieces;
       moved += c.moved_vertices;
       curvature_error = std::max(curvature_error, c.max_curvature_error);
       length_error = std::max(length_error, c.max_layout_length_error);
@@ -371,6 +439,18 @@ struct Chart_totals
         fallbacks = c.fallback_reason;
     }
   }
+
+  /// `Inverse_curvature_map_parameterizer_3`'s run on a disk (an energy other than the
+  /// entropy): one chart, never cut.
+  explicit Run_figures(const ICM::Parameterization_report& report)
+    : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
+      curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error),
+      metrics(report.metric), fallbacks(report.fallback_reason), layout(report.layout),
+      seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
+      seconds_parameterize(report.seconds_total), energy(report.energy), optimized_energy(true),
+      energy_iterations(report.energy_iterations), initial_energy(report.initial_energy),
+      final_energy(report.final_energy), energy_message(report.energy_message)
+  {}
 };
 
 struct Timings
@@ -378,32 +458,40 @@ struct Timings
   double read = 0, write = 0, total = 0;
 };
 
+Json optional_count(const std::optional<int>& n) { return n ? Json(*n) : Json(); }
+
 Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_reading_report& read,
-                  const ICM::Surface_parameterization_report& report, std::size_t seam_edges,
-                  const ICM::Distortion_measures& measures, const Timings& seconds)
+                  const Run_figures& t, const ICM::Distortion_measures& measures, const Timings& seconds)
 {
-  const Chart_totals t(report);
   Json j;
   j["input"] = args.input;
   j["output"] = args.output;
   j["vertices"] = num_vertices(mesh);
   j["faces"] = num_faces(mesh);
-  j["charts"] = t.pieces;
-  j["components"] = report.charts.size();
+  j["charts"] = t.charts;
+  j["components"] = t.components;
   j["boundary_loops"] = t.loops;
   j["genus"] = t.genus;
   j["cones"] = t.cones;
-  j["seam_edges"] = seam_edges;
-  j["layout"] = "propagation";
+  j["seam_edges"] = t.seam_edges;
+  j["layout"] = t.layout;
   j["newton_iterations"] = t.newton;
   j["max_curvature_error"] = t.curvature_error;
   j["max_layout_length_error"] = t.length_error;
   j["seam_length_error"] = t.seam_error;
-  j["overlapping_border_edges"] = t.overlaps;
-  j["raw_overlapping_border_edges"] = t.raw_overlaps;
+  j["overlapping_border_edges"] = optional_count(t.overlaps);
+  j["raw_overlapping_border_edges"] = optional_count(t.raw_overlaps);
   j["moved_vertices"] = t.moved;
   j["metric"] = t.metrics;
   j["metric_fallback"] = t.fallbacks;
+  j["energy"] = t.energy;
+  if(t.optimized_energy)
+  {
+    j["energy_iterations"] = t.energy_iterations;
+    j["initial_energy"] = t.initial_energy;
+    j["final_energy"] = t.final_energy;
+    j["energy_message"] = t.energy_message;
+  }
   j["flipped_faces"] = measures.flipped_faces;
   j["log_area_distortion"] = measures.log_area_distortion;
   j["area_ratio_min"] = measures.area_ratio_min;
@@ -414,25 +502,27 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["faces_triangulated"] = read.triangulated_faces;
   j["repairs"] = read.repairs();
   j["seconds_read"] = seconds.read;
-  j["seconds_cones"] = report.seconds_cones;
-  j["seconds_optimum"] = report.seconds_optimum;
-  j["seconds_cut"] = report.seconds_cut;
-  j["seconds_layout"] = report.seconds_layout;
-  j["seconds_parameterize"] = report.seconds_total;
+  j["seconds_cones"] = t.seconds_cones;
+  j["seconds_optimum"] = t.seconds_optimum;
+  j["seconds_cut"] = t.seconds_cut;
+  j["seconds_layout"] = t.seconds_layout;
+  j["seconds_parameterize"] = t.seconds_parameterize;
   j["seconds_write"] = seconds.write;
   j["seconds_total"] = seconds.total;
   return j;
 }
 
-void print_summary_line(const Arguments& args, const Mesh& mesh, const ICM::Surface_parameterization_report& report,
-                        std::size_t seam_edges, const ICM::Distortion_measures& measures)
+void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figures& t,
+                        const ICM::Distortion_measures& measures)
 {
-  const Chart_totals t(report);
   std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
-            << report.charts.size() << " chart(s), " << t.cones << " cones, " << seam_edges
-            << " seam edges, " << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", "
-            << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion
-            << ", " << report.seconds_total << " s -> " << args.output << "\n";
+            << t.components << " chart(s), " << t.cones << " cones, " << t.seam_edges << " seam edges, "
+            << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", ";
+  if(t.optimized_energy)
+    std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in "
+              << t.energy_iterations << " steps, ";
+  std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion
+            << ", " << t.seconds_parameterize << " s -> " << args.output << "\n";
 }
 
 // --- the run ---------------------------------------------------------------------------
@@ -445,6 +535,75 @@ ICM::Surface_parameterization_report run_metric(const Mesh& mesh, Mesh::Property
                                                 const std::vector<Mesh::Edge_index>& user_seams)
 {
   return ICM::parameterize<Metric>(mesh, uv, options, cones, &seams, user_seams);
+}
+
+/// Why `mesh` is not a topological disk (one connected component, one boundary loop, genus
+/// 0), in words, or empty.
+std::string why_not_a_disk(Mesh& mesh)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:icm_param_component").first;
+  const std::size_t components = PMP::connected_components(mesh, component);
+  mesh.remove_property_map(component);
+  if(components > 1)
+    return "it has " + std::to_string(components) + " connected components";
+  std::vector<Mesh::Halfedge_index> cycles;
+  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
+  const long loops = static_cast<long>(cycles.size());
+  const long euler = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
+                     static_cast<long>(num_faces(mesh));
+  const long genus = (2 - loops - euler) / 2;
+  if(loops == 1 && genus == 0)
+    return {};
+  return loops == 0 ? "it is closed, genus " + std::to_string(genus)
+                    : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
+}
+
+/// An energy other than the entropy on the disk `mesh`, chosen by its name; each energy's
+/// parameterizer is instantiated in its own file (icm_param_energy_*.cpp).
+ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
+{
+  using namespace icm_param;
+  if(args.energy == ICM::U_square::name)
+    return parameterize_disk<ICM::U_square>(mesh, args.metric, uvmap);
+  if(args.energy == ICM::Area_distortion::name)
+    return parameterize_disk<ICM::Area_distortion>(mesh, args.metric, uvmap);
+  if(args.energy == ICM::Angle_distortion::name)
+    return parameterize_disk<ICM::Angle_distortion>(mesh, args.metric, uvmap);
+  return parameterize_disk<ICM::Log_area_distortion>(mesh, args.metric, uvmap);
+}
+
+/// The entropy on any surface, by `ICM::parameterize` (cones and seams where needed): the
+/// figures of its run into `figures`, or the reason it failed.
+std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<Mesh::Vertex_index, double>& cones,
+                        const std::vector<Mesh::Edge_index>& user_seams, icm_param::Corner_uv_map uvmap,
+                        std::optional<Run_figures>& figures)
+{
+  ICM::Surface_parameterization_options options;
+  options.remove_overlaps = !args.keep_overlaps;
+  if(args.max_cones >= 0)
+  {
+    options.automatic_cones = args.max_cones > 0;
+    options.cones.max_cones = args.max_cones;
+    options.initial_cones = std::min(options.initial_cones, args.max_cones);
+  }
+  Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
+  options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
+
+  std::vector<Mesh::Edge_index> seams;
+  const ICM::Surface_parameterization_report report =
+    args.metric == ICM::Circle_packing_metric::name
+      ? run_metric<ICM::Circle_packing_metric>(mesh, uvmap, options, cones, seams, user_seams)
+    : args.metric == ICM::Inversive_distance_metric::name
+      ? run_metric<ICM::Inversive_distance_metric>(mesh, uvmap, options, cones, seams, user_seams)
+    : args.metric == ICM::Vertex_scaling_metric::name
+      ? run_metric<ICM::Vertex_scaling_metric>(mesh, uvmap, options, cones, seams, user_seams)
+      : run_metric<ICM::Intrinsic_delaunay_metric>(mesh, uvmap, options, cones, seams, user_seams);
+  progress.finish();
+  if(report.status != SMP::OK)
+    return std::string(ICM::error_message(report.status)) + ": " + report.message;
+  figures.emplace(report, seams.size());
+  return {};
 }
 
 int run(const Arguments& args, const Failure_report& fail)
@@ -485,35 +644,33 @@ int run(const Arguments& args, const Failure_report& fail)
   if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, by_index, user_seams, error))
     return fail_after_reading(error);
 
-  ICM::Surface_parameterization_options options;
-  options.remove_overlaps = !args.keep_overlaps;
-  if(args.max_cones >= 0)
-  {
-    options.automatic_cones = args.max_cones > 0;
-    options.cones.max_cones = args.max_cones;
-    options.initial_cones = std::min(options.initial_cones, args.max_cones);
-  }
-  Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
-  options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
-
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
-  std::vector<Mesh::Edge_index> seams;
-  const ICM::Surface_parameterization_report report =
-    args.metric == ICM::Circle_packing_metric::name
-      ? run_metric<ICM::Circle_packing_metric>(mesh, uvmap, options, cones, seams, user_seams)
-    : args.metric == ICM::Inversive_distance_metric::name
-      ? run_metric<ICM::Inversive_distance_metric>(mesh, uvmap, options, cones, seams, user_seams)
-    : args.metric == ICM::Vertex_scaling_metric::name
-      ? run_metric<ICM::Vertex_scaling_metric>(mesh, uvmap, options, cones, seams, user_seams)
-      : run_metric<ICM::Intrinsic_delaunay_metric>(mesh, uvmap, options, cones, seams, user_seams);
-  progress.finish();
-  if(report.status != SMP::OK)
-    return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
+  std::optional<Run_figures> figures;
+  if(optimizes_energy(args))
+  {
+    const std::string not_a_disk = why_not_a_disk(mesh);
+    if(!not_a_disk.empty())
+      return fail_after_reading("--energy " + args.energy +
+                                " needs a disk (one component, one boundary loop, genus 0), and " + not_a_disk +
+                                ": energies other than the entropy are not available on surfaces cut through "
+                                "cones yet (leave out --energy for the entropy)");
+    const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
+    if(report.status != SMP::OK)
+      return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    figures.emplace(report);
+  }
+  else
+  {
+    const std::string reason = run_entropy(args, mesh, cones, user_seams, uvmap, figures);
+    if(!reason.empty())
+      return fail_after_reading(reason);
+  }
 
   t = Clock::now();
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
   ICM::IO::Svg_options svg_options;
-  svg_options.title = fs::path(args.input).filename().string() + " — ICM";
+  svg_options.title = fs::path(args.input).filename().string() + " — ICM" +
+                      (optimizes_energy(args) ? " (" + args.energy + ")" : std::string());
   if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options))
     return fail_after_reading(error);
   seconds.write = since(t);
@@ -521,14 +678,14 @@ int run(const Arguments& args, const Failure_report& fail)
   seconds.total = since(start);
 
   if(args.json)
-    std::cout << summary_json(args, mesh, read, report, seams.size(), measures, seconds)
+    std::cout << summary_json(args, mesh, read, *figures, measures, seconds)
                    .dump(-1, ' ', false, Json::error_handler_t::replace)
               << "\n";
   else
   {
     for(const std::string& repair : read.repairs())
       std::cerr << "icm_param: " << args.input << ": " << repair << "\n";
-    print_summary_line(args, mesh, report, seams.size(), measures);
+    print_summary_line(args, mesh, *figures, measures);
   }
   return 0;
 }

@@ -557,4 +557,111 @@ TEST(Cli, IsolatedAndNonManifoldVerticesAreRepaired)
                        {"out.obj", "pinched.off"});
 }
 
+// --- --energy ---------------------------------------------------------------------------
+
+/// A successful --json run's one JSON line (the test fails, and "" is returned, otherwise).
+std::string json_line_of(const Sandbox::Result& r)
+{
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << "stderr: " << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  EXPECT_EQ(lines.size(), 1u) << r.out;
+  return lines.size() == 1 ? lines[0] : std::string();
+}
+
+double json_number(const std::string& json, const std::string& key)
+{
+  const std::string v = json_value(json, key);
+  EXPECT_FALSE(v.empty() || v == "null") << key << " missing in " << json;
+  return v.empty() || v == "null" ? std::nan("") : std::stod(v);
+}
+
+TEST(Cli, EveryEnergyRunsOnADisk)
+{
+  Sandbox box;
+  for(const std::string energy : {"u-square", "area", "angle", "log-area"})
+  {
+    SCOPED_TRACE(energy);
+    const std::string obj = energy + ".obj", svg = energy + ".svg";
+    const std::string json =
+      json_line_of(box.run(quote(data_path("nefertiti.off")) + " -o " + obj + " --svg " + svg + " --json --energy " + energy));
+    EXPECT_EQ(json_value(json, "energy"), "\"" + energy + "\"");
+    EXPECT_EQ(json_value(json, "energy_message"), "\"\"") << "the optimizer stopped early";
+    EXPECT_GE(json_number(json, "energy_iterations"), 1);
+    const double initial = json_number(json, "initial_energy"), final = json_number(json, "final_energy");
+    EXPECT_LE(final, initial);
+    EXPECT_GE(final, 0.0);
+    EXPECT_EQ(json_value(json, "flipped_faces"), "0");
+    EXPECT_EQ(json_value(json, "charts"), "1");
+    EXPECT_EQ(json_value(json, "cones"), "0");
+    EXPECT_EQ(json_value(json, "metric"), "\"intrinsic-delaunay\"");
+    EXPECT_GT(json_number(json, "seconds_optimum"), 0.0);
+    EXPECT_GE(json_number(json, "seconds_parameterize"), json_number(json, "seconds_optimum"));
+    // The disk's every vertex has one UV, every face its three.
+    const std::vector<std::string> lines = lines_of(read_text(box.file(obj)));
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(), [](const std::string& l) { return l.rfind("vt ", 0) == 0; }),
+              299);
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(), [](const std::string& l) { return l.rfind("f ", 0) == 0; }),
+              562);
+    EXPECT_EQ(read_text(box.file(svg)).rfind("<svg", 0), 0u);
+  }
+}
+
+TEST(Cli, LogAreaEnergyLowersEquationEightWithoutFlips)
+{
+  Sandbox box;
+  const std::string input = quote(data_path("nefertiti.off"));
+  const std::string entropy = json_line_of(box.run(input + " -o entropy.obj --json"));
+  const std::string log_area = json_line_of(box.run(input + " -o log_area.obj --json --energy log-area"));
+  EXPECT_EQ(json_value(entropy, "energy"), "\"entropy\"");
+  EXPECT_EQ(json_value(entropy, "energy_iterations"), "") << "the entropy has no optimizer steps";
+  EXPECT_EQ(json_value(log_area, "flipped_faces"), "0");
+  // doc/energies.md: 0.0663 for the entropy, 0.0546 at the log-area optimum.
+  EXPECT_LT(json_number(log_area, "log_area_distortion"), 0.95 * json_number(entropy, "log_area_distortion"));
+  // The summary line without --json names the energy.
+  const Sandbox::Result r = box.run(input + " -o quiet.obj --energy log-area --metric circle-packing");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("log-area energy"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadEnergyIsAUsageError)
+{
+  Sandbox box;
+  const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")) + " -o out.obj --energy entropic");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--energy: entropic not in {entropy,u-square,area,angle,log-area}"), std::string::npos)
+    << r.err;
+  EXPECT_NE(r.err.find("usage:"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(box.listing().empty());
+}
+
+TEST(Cli, EnergyOnASurfaceThatIsNotADiskIsRefused)
+{
+  Sandbox box;
+  expect_clean_failure(box, box.run(quote(data_path("eight.off")) + " -o out.obj --svg out.svg --energy log-area"),
+                       "--energy log-area needs a disk (one component, one boundary loop, genus 0), and it is "
+                       "closed, genus 2");
+  const Sandbox::Result r = box.run(quote(data_path("pig.off")) + " -o out.obj --energy angle");
+  expect_clean_failure(box, r, "it has genus 0 and 7 boundary loops");
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+TEST(Cli, EnergyConflictsWithConesAndSeams)
+{
+  Sandbox box;
+  const std::string input = quote(data_path("nefertiti.off"));
+  for(const std::string& options : std::vector<std::string>{"--cone 100:90", "--cones auto", "--cones 4",
+                                                            "--seams " + quote(data_path("sphere966.selection.txt"))})
+  {
+    const Sandbox::Result r = box.run(input + " -o out.obj --energy log-area " + options);
+    EXPECT_EQ(r.exit_code, 2) << options;
+    const std::string option = options.substr(0, options.find(' '));
+    EXPECT_NE(r.err.find("icm_param: " + option + " cannot go with --energy log-area"), std::string::npos) << r.err;
+    EXPECT_TRUE(box.listing().empty()) << options;
+  }
+  // --cones 0 asks for no cone, which the disk has anyway.
+  EXPECT_EQ(box.run(input + " -o out.obj --energy log-area --cones 0").exit_code, 0);
+}
+
 } // namespace

@@ -1,0 +1,50 @@
+// The definition of icm_param::parameterize_disk, included only by the files that instantiate
+// it for one energy each (icm_param_energy_*.cpp).
+
+#ifndef ICM_PARAM_ENERGY_IMPL_H
+#define ICM_PARAM_ENERGY_IMPL_H
+
+#include "icm_param_energy.h"
+
+#include <ICM/Circle_packing_metric.h>
+#include <ICM/Intrinsic_delaunay_metric.h>
+#include <ICM/Inversive_distance_metric.h>
+#include <ICM/Vertex_scaling_metric.h>
+
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
+
+namespace icm_param {
+
+/// One (metric, energy) pair: the parameterizer's vertex UVs, copied to the corners.
+template <class Metric, class Energy>
+ICM::Parameterization_report parameterize_disk_in(Mesh& mesh, Corner_uv_map corner_uv)
+{
+  ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default, Energy> parameterizer;
+  auto vertex_uv = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:icm_param_uv").first;
+  const Mesh::Halfedge_index border = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
+  // The status is also the report's (CGAL's parameterize() passes a copy of the
+  // parameterizer, whose copies share one report).
+  CGAL::Surface_mesh_parameterization::parameterize(mesh, parameterizer, border, vertex_uv);
+  for(Mesh::Halfedge_index h : halfedges(mesh))
+    if(!is_border(h, mesh))
+      put(corner_uv, h, get(vertex_uv, target(h, mesh)));
+  mesh.remove_property_map(vertex_uv);
+  return parameterizer.report();
+}
+
+template <class Energy>
+ICM::Parameterization_report parameterize_disk(Mesh& mesh, const std::string& metric, Corner_uv_map uv)
+{
+  if(metric == ICM::Circle_packing_metric::name)
+    return parameterize_disk_in<ICM::Circle_packing_metric, Energy>(mesh, uv);
+  if(metric == ICM::Inversive_distance_metric::name)
+    return parameterize_disk_in<ICM::Inversive_distance_metric, Energy>(mesh, uv);
+  if(metric == ICM::Vertex_scaling_metric::name)
+    return parameterize_disk_in<ICM::Vertex_scaling_metric, Energy>(mesh, uv);
+  return parameterize_disk_in<ICM::Intrinsic_delaunay_metric, Energy>(mesh, uv);
+}
+
+} // namespace icm_param
+
+#endif // ICM_PARAM_ENERGY_IMPL_H

@@ -1,0 +1,9 @@
+// icm_param --energy log-area: the parameterizer for ICM::Log_area_distortion, in a file of its own
+// so that the energies compile in parallel (icm_param_energy.h).
+
+#include "icm_param_energy_impl.h"
+
+namespace icm_param {
+template ICM::Parameterization_report parameterize_disk<ICM::Log_area_distortion>(Mesh& mesh, const std::string& metric,
+                                                                  Corner_uv_map uv);
+} // namespace icm_param
