@@ -171,6 +171,10 @@ Method icm_method(std::string name) {
                                       {{"energy_iterations", report.energy_iterations},
                                        {"initial_energy", report.initial_energy},
                                        {"final_energy", report.final_energy}});
+            if (report.border_condition == ICM::Circle_domain().name())
+              r.report_numbers.insert(r.report_numbers.end(),
+                                      {{"border_iterations", report.border_iterations},
+                                       {"circle_deviation", report.circle_deviation}});
             return r;
           }};
 }
@@ -198,6 +202,9 @@ std::vector<Method> make_registry() {
       icm_energy_method<ICM::Area_distortion>("icm_area"),
       icm_energy_method<ICM::Angle_distortion>("icm_angle"),
       icm_energy_method<ICM::Log_area_distortion>("icm_log_area"),
+      // A genus-0 mesh with several border loops onto nested circles, without a cut.
+      icm_method<ICM::Inverse_curvature_map_parameterizer_3<Mesh, CGAL::Default, CGAL::Default, CGAL::Default,
+                                                           ICM::Circle_domain>>("icm_circle_domain"),
       cgal_method<SMP::LSCM_parameterizer_3<Mesh>>("lscm"),
       cgal_method<SMP::ARAP_parameterizer_3<Mesh>>("arap"),
       cgal_method<SMP::Discrete_conformal_map_parameterizer_3<Mesh>>("dcm"),
@@ -235,8 +242,9 @@ std::vector<Seam_method> make_seam_registry() {
 //   icm_keep_overlaps         the same with remove_overlaps = false: the raw cut (shown, and
 //                             given to CGAL's methods, when overlap removal made pieces)
 //   icm_free_boundary_opened  icm_free_boundary on the closed mesh opened at its first vertex
+//   icm_circle_domain         a genus-0 mesh with several loops onto nested circles, no cut
 const std::vector<std::string> surface_methods = {"icm", "icm_keep_overlaps",
-                                                  "icm_free_boundary_opened"};
+                                                  "icm_free_boundary_opened", "icm_circle_domain"};
 
 // The methods drawn by --svg-panels, in this order.
 const std::vector<std::string> panel_methods = {"icm_free_boundary", "lscm", "arap"};
@@ -1244,11 +1252,18 @@ void add_icm_report(Row& row, const Child_result& result) {
 // ICM's report on a disk: its numbers as JSON keys; the optimum's time and, for an energy
 // other than the entropy, the optimizer's steps and values in the Markdown status.
 void add_disk_icm_report(Row& row, const Child_result& result) {
-  auto is_count = [](const std::string& key) { return key == "energy_iterations"; };
+  auto is_count = [](const std::string& key) { return key == "energy_iterations" || key == "border_iterations"; };
   for (const auto& [key, value] : result.extra)
     row.json_extra.emplace_back(key, is_count(key) ? json_count(value) : json_num(value));
   if (result.extra.empty() || row.status.rfind("ok", 0) != 0) return;
   row.note = "optimum " + fmt_seconds(extra_value(result, "seconds_optimum")) + " s";
+  const double deviation = extra_value(result, "circle_deviation");
+  if (std::isfinite(deviation)) {
+    char circles[120];
+    std::snprintf(circles, sizeof circles, "; %.0f circle iterations, circle deviation %.2g",
+                  extra_value(result, "border_iterations"), deviation);
+    row.note += circles;
+  }
   const double steps = extra_value(result, "energy_iterations");
   if (!std::isfinite(steps)) return;
   char buf[160];
@@ -1269,6 +1284,7 @@ Row run_method(const Mesh& mesh, const Method& method, const Options& opt, Row r
 std::vector<std::string> surface_names(const Topology& t) {
   std::vector<std::string> names = {"icm", "lscm", "arap", "dcm", "dac", "mvc"};
   if (t.components == 1 && t.closed() && t.two_g() == 0) names.push_back("icm_free_boundary_opened");
+  if (t.components == 1 && t.loops > 1 && t.two_g() == 0) names.push_back("icm_circle_domain");
   return names;
 }
 
@@ -1379,6 +1395,18 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
         row.detail = "cut: " + cut_name;
         row.json_extra.emplace_back("cut", cut_name);
         row.json_extra.emplace_back("cut_seam_edges", cut.size());
+        progress_done(row);
+      }
+    } else if (name == "icm_circle_domain") {
+      const auto method = std::find_if(registry.begin(), registry.end(),
+                                       [&](const Method& r) { return r.name == name; });
+      if (!connected || topology.loops < 2 || topology.two_g() != 0) {
+        row = base;
+        row.method = name;
+        row.status = "skipped: a circle domain needs one component of genus 0 with several loops";
+      } else {
+        progress(name);
+        row = run_method(mesh, *method, opt, base);
         progress_done(row);
       }
     } else if (name == "icm_free_boundary_opened") {

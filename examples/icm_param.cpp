@@ -83,6 +83,7 @@ struct Arguments
   bool json = false, keep_overlaps = false, triangulate = false, quiet = false;
   std::string metric = ICM::Default_metric::name;
   std::string energy = ICM::Curvature_entropy::name;
+  std::string boundary = ICM::Free_border().name();
   int max_cones = -1;                        // -1: automatic
   bool cones_asked = false;                  // --cones auto or N > 0 given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
@@ -91,7 +92,7 @@ struct Arguments
 const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
-  "         [--energy entropy|u-square|area|angle|log-area]\n"
+  "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
   "         [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "       icm_param --help | --version\n";
 
@@ -194,11 +195,25 @@ std::vector<std::string> energy_names()
 
 bool optimizes_energy(const Arguments& args) { return args.energy != ICM::Curvature_entropy::name; }
 
-/// Why the options cannot go with the energy, or empty: an energy other than the entropy is
-/// minimised on a disk with a free boundary, where cones and seams have no place.
+/// What --boundary takes: the free border (default), a CGAL border parameterizer's circle or
+/// square, the circle domain of a surface with several border loops (doc/border_conditions.md).
+std::vector<std::string> boundary_names() { return {"free", "circle", "square", "circle-domain"}; }
+
+bool prescribes_border(const Arguments& args) { return args.boundary != "free"; }
+
+/// Whether the run goes through Inverse_curvature_map_parameterizer_3 (one chart, no cones)
+/// rather than ICM::parameterize (every surface, cones and seams).
+bool uses_parameterizer(const Arguments& args) { return optimizes_energy(args) || prescribes_border(args); }
+
+/// Why the options cannot go with the energy or the border condition, or empty: an energy
+/// other than the entropy is minimised on a disk with a free boundary, and a prescribed border
+/// leaves no choice to an energy; neither path has cones or seams.
 std::string energy_conflict(const Arguments& args)
 {
-  if(!optimizes_energy(args))
+  if(optimizes_energy(args) && prescribes_border(args))
+    return "--energy " + args.energy + " cannot go with --boundary " + args.boundary +
+           ": a prescribed border leaves one conformal map, nothing for an energy to choose";
+  if(!uses_parameterizer(args))
     return {};
   const char* option = !args.cones.empty() ? "--cone"
                        : !args.seams.empty() ? "--seams"
@@ -206,6 +221,9 @@ std::string energy_conflict(const Arguments& args)
                                              : nullptr;
   if(option == nullptr)
     return {};
+  if(prescribes_border(args))
+    return std::string(option) + " cannot go with --boundary " + args.boundary +
+           ": a prescribed border is solved on the mesh as it is, without cones or seams";
   return std::string(option) + " cannot go with --energy " + args.energy +
          ": energies other than the entropy are minimised on disks with a free boundary only, "
          "without cones or seams (leave out --energy for the entropy)";
@@ -239,6 +257,11 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                  "the energy minimised (default " + args.energy +
                    "); any other minimises it over the free-boundary maps of a disk, without cones or seams")
     ->check(CLI::IsMember(energy_names()))
+    ->type_name("NAME");
+  app.add_option("--boundary", args.boundary,
+                 "the border condition (default free): circle or square (a disk's border on CGAL's "
+                 "arc-length circle or square), circle-domain (every border loop a circle, no cut; genus 0)")
+    ->check(CLI::IsMember(boundary_names()))
     ->type_name("NAME");
   app.add_option("--cones", cones_text, "automatic interior cones: 'auto' (default) or at most N, 0 for none")
     ->check(cone_count_validator())
@@ -412,6 +435,11 @@ struct Run_figures
   int energy_iterations = 0;
   double initial_energy = 0, final_energy = 0;
   std::string energy_message;
+  /// The border condition (doc/border_conditions.md): "free" unless --boundary prescribed one,
+  /// then its faces flat on a straight side, its outer iterations and its circles' deviation.
+  std::string boundary = "free";
+  int degenerate_faces = 0, border_iterations = 0;
+  double circle_deviation = 0;
 
   /// `ICM::parameterize`'s run (the entropy) with `seam_edges` cut.
   Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_)
@@ -440,16 +468,19 @@ struct Run_figures
     }
   }
 
-  /// `Inverse_curvature_map_parameterizer_3`'s run on a disk (an energy other than the
-  /// entropy): one chart, never cut.
+  /// `Inverse_curvature_map_parameterizer_3`'s run (an energy other than the entropy, or a
+  /// prescribed border): one chart, never cut.
   explicit Run_figures(const ICM::Parameterization_report& report)
     : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
       curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error),
       metrics(report.metric), fallbacks(report.fallback_reason), layout(report.layout),
       seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
-      seconds_parameterize(report.seconds_total), energy(report.energy), optimized_energy(true),
+      seconds_parameterize(report.seconds_total), energy(report.energy),
+      optimized_energy(report.energy != ICM::Curvature_entropy::name),
       energy_iterations(report.energy_iterations), initial_energy(report.initial_energy),
-      final_energy(report.final_energy), energy_message(report.energy_message)
+      final_energy(report.final_energy), energy_message(report.energy_message), boundary(report.border_condition),
+      degenerate_faces(report.degenerate_faces), border_iterations(report.border_iterations),
+      circle_deviation(report.circle_deviation)
   {}
 };
 
@@ -491,6 +522,13 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
     j["initial_energy"] = t.initial_energy;
     j["final_energy"] = t.final_energy;
     j["energy_message"] = t.energy_message;
+  }
+  j["boundary"] = t.boundary;
+  if(t.boundary != "free")
+  {
+    j["degenerate_faces"] = t.degenerate_faces;
+    j["border_iterations"] = t.border_iterations;
+    j["circle_deviation"] = t.circle_deviation;
   }
   j["flipped_faces"] = measures.flipped_faces;
   j["log_area_distortion"] = measures.log_area_distortion;
@@ -538,8 +576,8 @@ ICM::Surface_parameterization_report run_metric(const Mesh& mesh, Mesh::Property
 }
 
 /// Why `mesh` is not a topological disk (one connected component, one boundary loop, genus
-/// 0), in words, or empty.
-std::string why_not_a_disk(Mesh& mesh)
+/// 0), or with `several_loops` not a genus-0 surface with borders, in words, or empty.
+std::string why_not_a_disk(Mesh& mesh, bool several_loops = false)
 {
   namespace PMP = CGAL::Polygon_mesh_processing;
   auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:icm_param_component").first;
@@ -553,17 +591,24 @@ std::string why_not_a_disk(Mesh& mesh)
   const long euler = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
                      static_cast<long>(num_faces(mesh));
   const long genus = (2 - loops - euler) / 2;
-  if(loops == 1 && genus == 0)
+  if(genus == 0 && (loops == 1 || (several_loops && loops > 1)))
     return {};
   return loops == 0 ? "it is closed, genus " + std::to_string(genus)
                     : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
 }
 
-/// An energy other than the entropy on the disk `mesh`, chosen by its name; each energy's
-/// parameterizer is instantiated in its own file (icm_param_energy_*.cpp).
+/// An energy other than the entropy on the disk `mesh`, or a prescribed border, chosen by
+/// name; each energy's parameterizer is instantiated in its own file (icm_param_energy_*.cpp),
+/// the border conditions' in icm_param_border.cpp.
 ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
 {
   using namespace icm_param;
+  if(args.boundary == "circle")
+    return parameterize_disk<ICM::Curvature_entropy, ICM::Circular_border<Mesh>>(mesh, args.metric, uvmap);
+  if(args.boundary == "square")
+    return parameterize_disk<ICM::Curvature_entropy, ICM::Square_border<Mesh>>(mesh, args.metric, uvmap);
+  if(args.boundary == "circle-domain")
+    return parameterize_disk<ICM::Curvature_entropy, ICM::Circle_domain>(mesh, args.metric, uvmap);
   if(args.energy == ICM::U_square::name)
     return parameterize_disk<ICM::U_square>(mesh, args.metric, uvmap);
   if(args.energy == ICM::Area_distortion::name)
@@ -646,7 +691,21 @@ int run(const Arguments& args, const Failure_report& fail)
 
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
   std::optional<Run_figures> figures;
-  if(optimizes_energy(args))
+  if(prescribes_border(args))
+  {
+    const bool circle_domain = args.boundary == "circle-domain";
+    const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
+    if(!not_a_disk.empty())
+      return fail_after_reading("--boundary " + args.boundary +
+                                (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
+                                               : " needs a disk (one component, one boundary loop, genus 0), and ") +
+                                not_a_disk);
+    const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
+    if(report.status != SMP::OK)
+      return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    figures.emplace(report);
+  }
+  else if(optimizes_energy(args))
   {
     const std::string not_a_disk = why_not_a_disk(mesh);
     if(!not_a_disk.empty())
@@ -670,7 +729,8 @@ int run(const Arguments& args, const Failure_report& fail)
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
   ICM::IO::Svg_options svg_options;
   svg_options.title = fs::path(args.input).filename().string() + " — ICM" +
-                      (optimizes_energy(args) ? " (" + args.energy + ")" : std::string());
+                      (optimizes_energy(args) ? " (" + args.energy + ")" : std::string()) +
+                      (prescribes_border(args) ? " (" + args.boundary + ")" : std::string());
   if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options))
     return fail_after_reading(error);
   seconds.write = since(t);

@@ -1,7 +1,8 @@
-// icm_param's runs of an energy other than the curvature entropy: the free-boundary
-// parameterizer, Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default, Energy>,
-// on a disk. Declared here and instantiated one energy per translation unit
-// (icm_param_energy_*.cpp): each file (one energy, four metrics) takes about 41 s of CPU at
+// icm_param's runs of Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default,
+// Energy, Border>: an energy other than the curvature entropy (free border, on a disk), or a
+// border condition other than the free one (--boundary, with the entropy). Declared here and
+// instantiated one energy, or the border conditions, per translation unit
+// (icm_param_energy_*.cpp, icm_param_border.cpp): each file (one energy, four metrics) takes about 41 s of CPU at
 // -O3 on a 2-core EPYC, icm_param.cpp 68 s; sixteen instantiations in icm_param.cpp would make
 // one file of some 2.5 minutes, while in five files `make -j2` builds them in about two.
 
@@ -22,11 +23,11 @@ using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 /// A UV per corner: the UV of target(h) in face(h), as ICM::parameterize writes it.
 using Corner_uv_map = Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2>;
 
-/// The minimum of `Energy` over the free-boundary conformal maps of the disk `mesh` in the
-/// class of the metric named `metric` (`Metric::name`), by CGAL's parameterize() from the
-/// mesh's longest border. Every corner of a face gets its vertex's UV in `uv`. The caller
-/// checks that `mesh` is one disk (the parameterizer would take only the border's component).
-template <class Energy>
+/// The minimum of `Energy` over the conformal maps of `mesh` with the border condition `Border`
+/// in the class of the metric named `metric` (`Metric::name`), by CGAL's parameterize() from
+/// the mesh's longest border. Every corner of a face gets its vertex's UV in `uv`. The caller
+/// checks that `mesh` is one component (the parameterizer would take only the border's).
+template <class Energy, class Border = ICM::Free_border>
 ICM::Parameterization_report parameterize_disk(Mesh& mesh, const std::string& metric, Corner_uv_map uv);
 
 } // namespace icm_param

@@ -16,11 +16,11 @@
 
 namespace icm_param {
 
-/// One (metric, energy) pair: the parameterizer's vertex UVs, copied to the corners.
-template <class Metric, class Energy>
+/// One (metric, energy, border) triple: the parameterizer's vertex UVs, copied to the corners.
+template <class Metric, class Energy, class Border>
 ICM::Parameterization_report parameterize_disk_in(Mesh& mesh, Corner_uv_map corner_uv)
 {
-  ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default, Energy> parameterizer;
+  ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default, Energy, Border> parameterizer;
   auto vertex_uv = mesh.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:icm_param_uv").first;
   const Mesh::Halfedge_index border = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
   // The status is also the report's (CGAL's parameterize() passes a copy of the
@@ -33,16 +33,16 @@ ICM::Parameterization_report parameterize_disk_in(Mesh& mesh, Corner_uv_map corn
   return parameterizer.report();
 }
 
-template <class Energy>
+template <class Energy, class Border>
 ICM::Parameterization_report parameterize_disk(Mesh& mesh, const std::string& metric, Corner_uv_map uv)
 {
   if(metric == ICM::Circle_packing_metric::name)
-    return parameterize_disk_in<ICM::Circle_packing_metric, Energy>(mesh, uv);
+    return parameterize_disk_in<ICM::Circle_packing_metric, Energy, Border>(mesh, uv);
   if(metric == ICM::Inversive_distance_metric::name)
-    return parameterize_disk_in<ICM::Inversive_distance_metric, Energy>(mesh, uv);
+    return parameterize_disk_in<ICM::Inversive_distance_metric, Energy, Border>(mesh, uv);
   if(metric == ICM::Vertex_scaling_metric::name)
-    return parameterize_disk_in<ICM::Vertex_scaling_metric, Energy>(mesh, uv);
-  return parameterize_disk_in<ICM::Intrinsic_delaunay_metric, Energy>(mesh, uv);
+    return parameterize_disk_in<ICM::Vertex_scaling_metric, Energy, Border>(mesh, uv);
+  return parameterize_disk_in<ICM::Intrinsic_delaunay_metric, Energy, Border>(mesh, uv);
 }
 
 } // namespace icm_param
