@@ -664,4 +664,62 @@ TEST(Cli, EnergyConflictsWithConesAndSeams)
   EXPECT_EQ(box.run(input + " -o out.obj --energy log-area --cones 0").exit_code, 0);
 }
 
+// --- --boundary --------------------------------------------------------------------------
+
+TEST(Cli, CircleDomainLaysOutEveryLoopAsACircleWithoutACut)
+{
+  // pig.off: genus 0, 7 border loops; the outer loop and six holes become circles.
+  Sandbox box;
+  const std::string json =
+    json_line_of(box.run(quote(data_path("pig.off")) + " -o pig.obj --svg pig.svg --json --boundary circle-domain"));
+  EXPECT_EQ(json_value(json, "boundary"), "\"circle-domain\"");
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_EQ(json_number(json, "seam_edges"), 0) << "a circle domain needs no cut";
+  EXPECT_EQ(json_number(json, "boundary_loops"), 7);
+  EXPECT_LE(json_number(json, "circle_deviation"), 1e-8);
+  EXPECT_GE(json_number(json, "border_iterations"), 1);
+  EXPECT_EQ(box.listing(), (std::vector<std::string>{"pig.obj", "pig.svg"}));
+}
+
+TEST(Cli, SquareAndCircleBordersOfADisk)
+{
+  Sandbox box;
+  const std::string input = quote(data_path("three_peaks.off"));
+  const std::string square = json_line_of(box.run(input + " -o square.obj --json --boundary square"));
+  EXPECT_EQ(json_value(square, "boundary"), "\"square\"");
+  EXPECT_EQ(json_number(square, "flipped_faces"), 0);
+  const std::string circle = json_line_of(box.run(input + " -o circle.obj --json --boundary circle"));
+  EXPECT_EQ(json_value(circle, "boundary"), "\"circle\"");
+  EXPECT_EQ(json_number(circle, "flipped_faces"), 0);
+  EXPECT_LE(json_number(circle, "circle_deviation"), 1e-8);
+  // The default is the free border, named in the JSON.
+  const std::string free = json_line_of(box.run(input + " -o free.obj --json --cones 0"));
+  EXPECT_EQ(json_value(free, "boundary"), "\"free\"");
+}
+
+TEST(Cli, BoundaryConditionsRefuseWhatTheyCannotDo)
+{
+  Sandbox box;
+  // A prescribed square needs a disk; a circle domain a genus-0 surface with a border.
+  Sandbox::Result r = box.run(quote(data_path("pig.off")) + " -o out.obj --boundary square");
+  expect_clean_failure(box, r, "--boundary square needs a disk (one component, one boundary loop, genus 0), and it "
+                               "has genus 0 and 7 boundary loops");
+  EXPECT_EQ(r.exit_code, 1);
+  r = box.run(quote(data_path("eight.off")) + " -o out.obj --boundary circle-domain");
+  expect_clean_failure(box, r, "--boundary circle-domain needs one component of genus 0 with at least one border "
+                               "loop, and it is closed, genus 2");
+  // A prescribed border leaves nothing for an energy to choose, and has no cones or seams.
+  const std::string input = quote(data_path("nefertiti.off"));
+  r = box.run(input + " -o out.obj --boundary circle --energy log-area");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--energy log-area cannot go with --boundary circle"), std::string::npos) << r.err;
+  r = box.run(input + " -o out.obj --boundary square --cone 100:90");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--cone cannot go with --boundary square"), std::string::npos) << r.err;
+  r = box.run(input + " -o out.obj --boundary ellipse");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--boundary: ellipse not in {free,circle,square,circle-domain}"), std::string::npos) << r.err;
+  EXPECT_TRUE(box.listing().empty());
+}
+
 } // namespace
