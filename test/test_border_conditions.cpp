@@ -359,13 +359,7 @@ TEST_P(BorderConditionCircleDomain, LoopsAreNestedCirclesWithoutCut)
 
 INSTANTIATE_TEST_SUITE_P(Meshes, BorderConditionCircleDomain,
                          ::testing::Values("pig.off", "head.off", "mech-holes-shark.off"),
-                         [](const auto& info) {
-                           std::string s = info.param.substr(0, info.param.find('.'));
-                           for(char& c : s)
-                             if(!std::isalnum(static_cast<unsigned char>(c)))
-                               c = '_';
-                           return s;
-                         });
+                         icm_test::Mesh_file_test_name());
 
 TEST(BorderConditionCircleDomain, OuterLoopOfTheGivenHalfedge)
 {

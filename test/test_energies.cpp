@@ -463,13 +463,7 @@ TEST_P(EnergyLogArea, OptimumLowersEquation8WithoutFlippedFaces)
 INSTANTIATE_TEST_SUITE_P(EnergyMeshes, EnergyLogArea,
                          testing::Values("nefertiti.off", "three_peaks.off", "mushroom.off", "lion-head.off",
                                          "camelhead.off", "mannequin-devil.off", "horse.obj"),
-                         [](const testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for(char& c : name)
-                             if(!std::isalnum(static_cast<unsigned char>(c)))
-                               c = '_';
-                           return name;
-                         });
+                         icm_test::Mesh_file_test_name());
 
 TEST(EnergyParameterizer, DefaultEnergyKeepsTheFreeBoundaryOptimum)
 {

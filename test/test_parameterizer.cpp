@@ -853,13 +853,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, SharedDisk,
                                          "mushroom.off", "cylinder_locally_refined.off",
                                          "lion-head.off", "camelhead.off", "mannequin-devil.off",
                                          "horse.obj"),
-                         [](const testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for(char& c : name)
-                             if(!std::isalnum(static_cast<unsigned char>(c)))
-                               c = '_';
-                           return name;
-                         });
+                         icm_test::Mesh_file_test_name());
 
 TEST(ParameterizerMetric, FallsBackToTheCirclePackingWhenTheMeshsOwnClassCannotGetThere)
 {

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -35,6 +36,21 @@ inline std::string data_path(const std::string& name) { return std::string(ICM_T
 /// A mesh of `../shared/data/meshes`; tests that need it skip when it is missing.
 inline std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
 inline bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+
+/// A parameterized test's name from a mesh file name: every character that is not a letter
+/// or a digit becomes '_' (gtest names allow no other), e.g. "lion-head.off" -> "lion_head_off".
+struct Mesh_file_test_name
+{
+  template <class Param_info>
+  std::string operator()(const Param_info& info) const
+  {
+    std::string name(info.param);
+    for(char& c : name)
+      if(!std::isalnum(static_cast<unsigned char>(c)))
+        c = '_';
+    return name;
+  }
+};
 
 /// The indexed first component of a mesh file.
 inline ICM::internal::Mesh_index index_of(const std::string& path)
