@@ -121,13 +121,7 @@ class EnergyGradient : public testing::Test
 };
 using Metrics = testing::Types<ICM::Intrinsic_delaunay_metric, ICM::Circle_packing_metric,
                                ICM::Vertex_scaling_metric, ICM::Inversive_distance_metric>;
-class Metric_names
-{
-public:
-  template <class T>
-  static std::string GetName(int) { return T::name; }
-};
-TYPED_TEST_SUITE(EnergyGradient, Metrics, Metric_names);
+TYPED_TEST_SUITE(EnergyGradient, Metrics, icm_test::Metric_test_names);
 
 /// Optimizer options tight enough for Theorem 3.2 to 1e-6.
 ICM::Curvature_space_options tight_options()
@@ -314,8 +308,12 @@ TEST(EnergyOptimizer, AFrozenTriangulationReachesTheOptimumWithFlips)
     Eigen::VectorXd k;
     ASSERT_EQ(curvature.evaluate(frozen, k), 0);
     for(int v = 0; v < index.number_of_vertices(); ++v)
+    {
       if(!S[v])
+      {
         ASSERT_LT(std::abs(k[v]), 1e-9) << name << ", vertex " << v;
+      }
+    }
     std::cout << name << ": log-area with flips " << a.iterations << " steps, frozen for 5 " << b.iterations
               << " steps and " << b.refreshes << " refreshes, |u difference| "
               << (frozen - flipping).cwiseAbs().maxCoeff() << "\n";
@@ -374,7 +372,9 @@ TEST(EnergyOptimizer, InteriorConesAreSingularVerticesLikeTheBorder)
   for(int v = 0; v < index.number_of_vertices(); ++v)
   {
     if(!S[v])
+    {
       ASSERT_LT(std::abs(k[v]), 1e-9) << v;
+    }
   }
   for(int i = 0; i < 3; ++i)
     EXPECT_GT(std::abs(k[minima[i]]), 1e-3) << "cone " << i;

@@ -43,13 +43,7 @@ class MetricConcept : public testing::Test
 };
 using Metrics = testing::Types<ICM::Circle_packing_metric, ICM::Inversive_distance_metric,
                                ICM::Vertex_scaling_metric, ICM::Intrinsic_delaunay_metric>;
-class Metric_names
-{
-public:
-  template <class T>
-  static std::string GetName(int) { return T::name; }
-};
-TYPED_TEST_SUITE(MetricConcept, Metrics, Metric_names);
+TYPED_TEST_SUITE(MetricConcept, Metrics, icm_test::Metric_test_names);
 
 TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences)
 {
@@ -112,7 +106,7 @@ class ExactMetric : public testing::Test
 {
 };
 using Exact_metrics = testing::Types<ICM::Inversive_distance_metric, ICM::Vertex_scaling_metric>;
-TYPED_TEST_SUITE(ExactMetric, Exact_metrics, Metric_names);
+TYPED_TEST_SUITE(ExactMetric, Exact_metrics, icm_test::Metric_test_names);
 
 TYPED_TEST(ExactMetric, ReproducesTheMeshAtU0)
 {
