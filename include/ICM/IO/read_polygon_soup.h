@@ -551,13 +551,11 @@ inline void read_obj(std::string_view text, Polygon_soup& soup, const Soup_readi
 {
   Text_lines lines(text);
   std::string_view line;
-  while(lines.next(line))
+  while(next_content_line(lines, line))
   {
-    line = without_comment(line);
     Tokens tokens(line);
     std::string_view keyword;
-    if(!tokens.next(keyword))
-      continue;
+    tokens.next(keyword); // a content line has a first token
     if(keyword == "v")
     {
       const std::size_t v = soup.points.size();
@@ -1145,21 +1143,17 @@ inline std::optional<Mesh_file_format> format_from_content(std::string_view data
 {
   Text_lines lines(data);
   std::string_view line;
-  while(lines.next(line))
-  {
-    line = without_comment(line);
-    Tokens tokens(line);
-    std::string_view word;
-    if(!tokens.next(word))
-      continue;
-    if(word == "ply")
-      return Mesh_file_format::Ply;
-    if(word == "solid")
-      return Mesh_file_format::Stl;
-    if(word.size() >= 3 && word.substr(word.size() - 3) == "OFF" && word.size() <= 9)
-      return Mesh_file_format::Off;
+  if(!next_content_line(lines, line))
     return std::nullopt;
-  }
+  Tokens tokens(line);
+  std::string_view word;
+  tokens.next(word); // a content line has a first token
+  if(word == "ply")
+    return Mesh_file_format::Ply;
+  if(word == "solid")
+    return Mesh_file_format::Stl;
+  if(word.size() >= 3 && word.substr(word.size() - 3) == "OFF" && word.size() <= 9)
+    return Mesh_file_format::Off;
   return std::nullopt;
 }
 
