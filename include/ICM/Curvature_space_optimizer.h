@@ -288,6 +288,19 @@ bool solve_with_current_weights(Dynamic_laplacian<SparseSolver>& laplacian, cons
   return x.allFinite();
 }
 
+/// y = Delta_FF^{-1} g_F for the Laplacian assembled from the weights of `state`, y per free
+/// unknown: the solve with which both optimizers turn grad_u E into a gradient they use.
+template <class SparseSolver, class Metric>
+bool solve_on_free_vertices(Dynamic_laplacian<SparseSolver>& laplacian, const Energy_state<Metric>& state,
+                            const Eigen::VectorXd& g, Eigen::VectorXd& y, int& factorizations)
+{
+  laplacian.assemble(state.weights());
+  Eigen::VectorXd b(laplacian.size());
+  for(int i = 0; i < laplacian.size(); ++i)
+    b[i] = g[laplacian.vertex(i)];
+  return solve_with_current_weights(laplacian, b, y, factorizations);
+}
+
 /// The preconditioner (P^T M P)^{-1} of the reduced problem: for the energies of u and of
 /// areas, whose Hessian in u is close to a lumped mass M, this is the reduced Hessian up to
 /// the shape terms. x = (P^T M P)^{-1} r minimises (1/2) h^T M h - r . h_S over h with
@@ -424,12 +437,9 @@ public:
     value_ = energy_value(energy_, state_);
     energy_gradient(energy_, state_, gradient_, partials_);
     Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
-    laplacian.assemble(state_.weights());
     // dE/du_S = g_S + W_SN Delta_NN^{-1} g_N.
-    Eigen::VectorXd gN(laplacian.size()), y;
-    for(int i = 0; i < laplacian.size(); ++i)
-      gN[i] = gradient_[laplacian.vertex(i)];
-    if(!solve_with_current_weights(laplacian, gN, y, report_.factorizations))
+    Eigen::VectorXd y;
+    if(!solve_on_free_vertices(laplacian, state_, gradient_, y, report_.factorizations))
     {
       message_ = "the Laplacian of the interior could not be factorized";
       return false;
@@ -888,11 +898,8 @@ Curvature_space_report minimize_energy_by_projected_gradient(
     {
       energy_gradient(energy, state, g, partials);
       Dynamic_laplacian<SparseSolver>& laplacian = icm.laplacian();
-      laplacian.assemble(state.weights());
-      Eigen::VectorXd b(laplacian.size()), y;
-      for(int i = 0; i < laplacian.size(); ++i)
-        b[i] = g[laplacian.vertex(i)];
-      if(!internal::solve_with_current_weights(laplacian, b, y, report.factorizations))
+      Eigen::VectorXd y;
+      if(!internal::solve_on_free_vertices(laplacian, state, g, y, report.factorizations))
         return false;
       h = Eigen::VectorXd::Zero(nv);
       for(int i = 0; i < laplacian.size(); ++i)

@@ -264,6 +264,10 @@ public:
       run.report.fallback_reason = std::string(Metric::name) + ": " + run.report.message;
       run.report.message.clear();
       status = optimum_and_layout<Circle_packing_metric>(index, border, run, uv);
+      // Both failed: the first metric's reason is the one to act on, the fallback's follows.
+      if(status != OK)
+        return run.fail(status, run.report.fallback_reason + "; then " + Circle_packing_metric::name + ": " +
+                                  run.report.message);
     }
     if(status != OK)
       return run.fail(status, run.report.message);
