@@ -441,8 +441,8 @@ struct Border_solve_report
 
 namespace internal {
 
-/// Where a prescribed curvature was missed most, and how far it was from the start: "at
-/// border vertex 8268 the target turns by 1.571 rad where the mesh turns by -4.308 rad". A
+/// Where a prescribed curvature was missed most, and how far it was from the start: "...
+/// is at border vertex 2, where the target turns 1.571 rad and the mesh turns -2.747 rad". A
 /// target far from the mesh's own curvature at a few vertices (a square's corner put where
 /// the border is concave) is the usual reason Newton cannot reach it.
 template <class Metric>
