@@ -28,6 +28,8 @@
 #ifndef ICM_DISTORTION_H
 #define ICM_DISTORTION_H
 
+#include <ICM/internal/Unit_frame.h>
+
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/number_utils.h>
@@ -144,34 +146,16 @@ inline void require_finite(const double* first, std::size_t count, const char* w
       throw std::invalid_argument(std::string("ICM::measure_distortion: non-finite ") + what + " coordinate");
 }
 
-/// Copies of `points` centred and scaled to unit size (half the longest side of their box is
+/// Copies of `points` in their `Unit_frame` (centred, half the longest side of their box is
 /// 1). Every measure is invariant under it, and areas of a mesh (or a layout) at 1e-300 or
 /// 1e+300 then neither underflow nor overflow. \pre every coordinate is finite.
 template <std::size_t N>
 std::vector<std::array<double, N>> to_unit_size(const std::vector<std::array<double, N>>& points)
 {
-  if(points.empty())
-    return points;
-  std::array<double, N> low = points[0], high = points[0];
-  for(const auto& p : points)
-    for(std::size_t k = 0; k < N; ++k)
-    {
-      low[k] = std::min(low[k], p[k]);
-      high[k] = std::max(high[k], p[k]);
-    }
-  std::array<double, N> center{};
-  double half = 0;
-  for(std::size_t k = 0; k < N; ++k)
-  {
-    center[k] = low[k] / 2 + high[k] / 2; // halves first: no overflow near the largest double
-    half = std::max(half, high[k] / 2 - low[k] / 2);
-  }
-  if(!(half > 0))
-    half = 1;
+  const Unit_frame<N> frame = unit_frame_of<N>(points);
   std::vector<std::array<double, N>> out(points.size());
   for(std::size_t i = 0; i < points.size(); ++i)
-    for(std::size_t k = 0; k < N; ++k)
-      out[i][k] = (points[i][k] - center[k]) / half;
+    out[i] = frame.apply(points[i]);
   return out;
 }
 

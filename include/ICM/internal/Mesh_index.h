@@ -6,6 +6,8 @@
 #ifndef ICM_INTERNAL_MESH_INDEX_H
 #define ICM_INTERNAL_MESH_INDEX_H
 
+#include <ICM/internal/Unit_frame.h>
+
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -29,56 +31,13 @@ namespace internal {
 /// `Mesh_index`. Everything downstream (lengths, areas, angles, Newton) then works on
 /// numbers near 1 whatever the mesh's units: squared lengths of a mesh at 1e-300 would
 /// underflow to zero and areas of one at 1e+300 overflow to infinity.
-struct Normalisation
-{
-  std::array<double, 3> center{0, 0, 0};
-  double scale = 1;
+using Normalisation = Unit_frame<3>;
 
-  /// The frame of a bounding box: its centre, and half its longest side as the unit (1 if
-  /// the box is a point). Halves are taken before differences, so a box that spans the
-  /// whole range of doubles does not overflow.
-  static Normalisation of_box(const std::array<double, 3>& low, const std::array<double, 3>& high)
-  {
-    Normalisation n;
-    double half = 0;
-    for(int k = 0; k < 3; ++k)
-    {
-      n.center[k] = low[k] / 2 + high[k] / 2;
-      half = std::max(half, high[k] / 2 - low[k] / 2);
-    }
-    if(half > 0 && std::isfinite(half))
-      n.scale = half;
-    for(double& c : n.center)
-      if(!std::isfinite(c))
-        c = 0;
-    return n;
-  }
-
-  std::array<double, 3> apply(const std::array<double, 3>& p) const
-  {
-    return {(p[0] - center[0]) / scale, (p[1] - center[1]) / scale, (p[2] - center[2]) / scale};
-  }
-};
-
-/// The `Normalisation` of the bounding box of `points` (any range of `std::array<double, 3>`),
-/// non-finite points left out.
+/// The `Normalisation` of the bounding box of `points`, non-finite points left out.
 template <class PointRange>
 Normalisation normalisation_of(const PointRange& points)
 {
-  std::array<double, 3> low{0, 0, 0}, high{0, 0, 0};
-  bool first = true;
-  for(const std::array<double, 3>& p : points)
-  {
-    if(!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      continue;
-    for(int k = 0; k < 3; ++k)
-    {
-      low[k] = first ? p[k] : std::min(low[k], p[k]);
-      high[k] = first ? p[k] : std::max(high[k], p[k]);
-    }
-    first = false;
-  }
-  return Normalisation::of_box(low, high);
+  return unit_frame_of<3>(points);
 }
 
 /// Compact, read-only description of one connected triangle mesh.
