@@ -226,15 +226,14 @@ inline Inscribed_circle inscribed_circle(const std::vector<double>& lengths)
   return c;
 }
 
-/// The faces whose three corners all lie on one straight stretch of a prescribed border
-/// (a run of border vertices with turning angle exactly 0, with the two vertices that end
-/// it): any layout with that border makes them segments, so no flat metric can lay them
-/// out as triangles. An "ear" (a face with two border edges) on a square's side is one;
-/// CGAL's square border parameterizer warns of the same degeneracy.
-inline std::vector<int> faces_on_a_straight_stretch(const Mesh_index& index, const Eigen::VectorXd& curvature)
+/// Per vertex, the straight stretches of a prescribed border it must lie on, {-1, -1} for
+/// none. A stretch is a run of border vertices with turning angle exactly 0 with the two
+/// vertices that end it, numbered by the turning vertex that starts it (a turning vertex is
+/// on two). An interior vertex whose neighbours all lie on one stretch lies on it too in
+/// any layout without flipped faces (it is inside the hull of its neighbours): horse's
+/// vertex 700, whose six neighbours are border vertices of one side of a square.
+inline std::vector<std::array<int, 2>> straight_stretches(const Mesh_index& index, const Eigen::VectorXd& curvature)
 {
-  // Per border vertex the stretches it is on: a vertex that turns ends one and starts the
-  // next; the stretch of position p is numbered by the turning vertex that starts it.
   const int nv = index.number_of_vertices();
   std::vector<std::array<int, 2>> stretches(nv, {-1, -1});
   int first_id = 0;
@@ -263,13 +262,52 @@ inline std::vector<int> faces_on_a_straight_stretch(const Mesh_index& index, con
     }
     first_id = id;
   }
+  // Interior vertices pinned by their neighbours, until none is added: the stretches every
+  // neighbour shares (unset = not yet met a neighbour).
+  const std::array<int, 2> unset{-2, -2};
+  std::vector<std::array<int, 2>> shared(nv);
+  auto meet = [&](int v, const std::array<int, 2>& neighbour) {
+    std::array<int, 2>& s = shared[v];
+    if(s == unset)
+      s = neighbour;
+    for(int& x : s)
+      if(x >= 0 && x != neighbour[0] && x != neighbour[1])
+        x = -1;
+  };
+  for(bool added = true; added;)
+  {
+    std::fill(shared.begin(), shared.end(), unset);
+    for(const std::array<int, 2>& e : index.edges)
+    {
+      meet(e[0], stretches[e[1]]);
+      meet(e[1], stretches[e[0]]);
+    }
+    added = false;
+    for(int v = 0; v < nv; ++v)
+      if(!index.is_boundary_vertex[v] && stretches[v][0] < 0)
+        for(int x : shared[v])
+          if(x >= 0)
+          {
+            stretches[v] = {x, x};
+            added = true;
+            break;
+          }
+  }
+  return stretches;
+}
+
+/// The faces whose three corners all lie on one straight stretch (`straight_stretches`):
+/// any layout with that border makes them segments, so no flat metric can lay them out as
+/// triangles. An "ear" (a face with two border edges) on a square's side is one; CGAL's
+/// square border parameterizer warns of the same degeneracy.
+inline std::vector<int> faces_on_a_straight_stretch(const Mesh_index& index,
+                                                    const std::vector<std::array<int, 2>>& stretches)
+{
   auto on = [&](int v, int stretch) { return stretches[v][0] == stretch || stretches[v][1] == stretch; };
   std::vector<int> degenerate;
   for(int f = 0; f < index.number_of_faces(); ++f)
   {
     const std::array<int, 3>& c = index.faces[f];
-    if(!index.is_boundary_vertex[c[0]] || !index.is_boundary_vertex[c[1]] || !index.is_boundary_vertex[c[2]])
-      continue;
     for(int stretch : stretches[c[0]])
       if(stretch >= 0 && on(c[1], stretch) && on(c[2], stretch))
       {
@@ -293,11 +331,12 @@ inline int count_flipped_faces_among(const Mesh_index& index, const std::vector<
 }
 
 /// A rectangle border (one loop, four turning angles pi/2, the others 0): turns the layout
-/// so that its sides are axis-parallel and puts every vertex of a side exactly on it (they
-/// are within the layout's round-off of it). The faces of
-/// `faces_on_a_straight_stretch` then have exactly zero area instead of a round-off sign.
-/// Returns false, changing nothing, for another border.
-inline bool make_rectangle_sides_exact(const Mesh_index& index, const Eigen::VectorXd& curvature, std::vector<Uv>& uv)
+/// so that its sides are axis-parallel and puts every vertex of a side, and every interior
+/// vertex pinned to it (`straight_stretches`), exactly on it (they are within the layout's
+/// round-off of it). The faces of `faces_on_a_straight_stretch` then have exactly zero area
+/// instead of a round-off sign. Returns false, changing nothing, for another border.
+inline bool make_rectangle_sides_exact(const Mesh_index& index, const Eigen::VectorXd& curvature,
+                                       const std::vector<std::array<int, 2>>& stretches, std::vector<Uv>& uv)
 {
   if(index.number_of_boundary_loops() != 1)
     return false;
@@ -332,6 +371,10 @@ inline bool make_rectangle_sides_exact(const Mesh_index& index, const Eigen::Vec
       if(p == to)
         break;
     }
+    // The stretch a corner starts is numbered by it: this side is stretch `side`.
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+      if(!index.is_boundary_vertex[v] && stretches[v][0] == side)
+        uv[v][axis] = start[axis];
   }
   return true;
 }

@@ -123,9 +123,10 @@ struct Parameterization_report
   double max_curvature_error = 0;        ///< final max |k_i| over interior vertices
   double max_layout_length_error = 0;    ///< UV edge length vs metric, see `Layout_check`
   int flipped_faces = 0;
-  /// A prescribed border with straight sides (a square): the faces whose three corners lie on
-  /// one side, laid out as segments whatever the metric (an "ear" on a side; CGAL's square
-  /// border makes them degenerate too). Not counted in `flipped_faces`.
+  /// A prescribed border with straight sides (a square): the faces whose three corners are
+  /// held on one side (`internal::straight_stretches`), laid out as segments whatever the
+  /// metric (an "ear" on a side; CGAL's square border makes them degenerate too). Not
+  /// counted in `flipped_faces`.
   int degenerate_faces = 0;
   /// Vertices moved off the metric's layout to unflip a face of the mesh that its intrinsic
   /// triangulation does not have (see `unflip_by_moving_vertices`).
@@ -522,10 +523,12 @@ private:
     }
     if(border.kind == Border_kind::Prescribed_curvature)
     {
-      // Faces with three corners on one straight side are segments in any such layout:
+      // Faces whose three corners are held on one straight side (border vertices of it, or
+      // interior vertices whose neighbours all are) are segments in any such layout:
       // counted apart (exactly flat on a rectangle) rather than as flipped.
-      internal::make_rectangle_sides_exact(index, border.curvature, uv);
-      const std::vector<int> flat = internal::faces_on_a_straight_stretch(index, border.curvature);
+      const std::vector<std::array<int, 2>> stretches = internal::straight_stretches(index, border.curvature);
+      internal::make_rectangle_sides_exact(index, border.curvature, stretches, uv);
+      const std::vector<int> flat = internal::faces_on_a_straight_stretch(index, stretches);
       report.degenerate_faces = static_cast<int>(flat.size());
       check.flipped_faces = count_flipped_faces(index, uv) - internal::count_flipped_faces_among(index, uv, flat);
     }
