@@ -165,7 +165,8 @@ Method icm_method(std::string name) {
                                 {"seconds_metric", report.seconds_metric},
                                 {"seconds_optimum", report.seconds_optimum},
                                 {"seconds_layout", report.seconds_layout},
-                                {"seconds_total", report.seconds_total}};
+                                {"seconds_total", report.seconds_total},
+                                {"border_crossings", report.overlapping_border_edges}};
             if (Parameterizer::optimizes_energy)
               r.report_numbers.insert(r.report_numbers.end(),
                                       {{"energy_iterations", report.energy_iterations},
@@ -1252,11 +1253,15 @@ void add_icm_report(Row& row, const Child_result& result) {
 // ICM's report on a disk: its numbers as JSON keys; the optimum's time and, for an energy
 // other than the entropy, the optimizer's steps and values in the Markdown status.
 void add_disk_icm_report(Row& row, const Child_result& result) {
-  auto is_count = [](const std::string& key) { return key == "energy_iterations" || key == "border_iterations"; };
+  auto is_count = [](const std::string& key) {
+    return key == "energy_iterations" || key == "border_iterations" || key == "border_crossings";
+  };
   for (const auto& [key, value] : result.extra)
     row.json_extra.emplace_back(key, is_count(key) ? json_count(value) : json_num(value));
   if (result.extra.empty() || row.status.rfind("ok", 0) != 0) return;
   row.note = "optimum " + fmt_seconds(extra_value(result, "seconds_optimum")) + " s";
+  if (extra_value(result, "border_crossings") > 0)
+    row.note += "; " + count_text(extra_value(result, "border_crossings")) + " border crossings";
   const double deviation = extra_value(result, "circle_deviation");
   if (std::isfinite(deviation)) {
     char circles[120];

@@ -271,7 +271,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->type_name("VERTEX:DEGREES");
   app.add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
     ->type_name("FILE");
-  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps)");
+  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps); with --energy or a prescribed --boundary, whose one chart is not cut, write a map that does rather than fail");
   app.add_flag("--triangulate", args.triangulate, "triangulate polygons (otherwise they are refused)");
   app.add_flag("-q,--quiet", args.quiet, "no progress line on stderr for large meshes");
   try
@@ -422,7 +422,8 @@ private:
 struct Run_figures
 {
   int charts = 1, components = 1, cones = 0, genus = 0, loops = 0, newton = 0, moved = 0;
-  /// Pairs of crossing border edges; not counted by the disk parameterizer (null in JSON).
+  /// Pairs of crossing border edges, after and before overlap removal (the parameterizer of
+  /// an energy or a prescribed border removes none: both are its count).
   std::optional<int> overlaps, raw_overlaps;
   std::size_t seam_edges = 0;
   double curvature_error = 0, length_error = 0, seam_error = 0;
@@ -472,6 +473,7 @@ struct Run_figures
   /// prescribed border): one chart, never cut.
   explicit Run_figures(const ICM::Parameterization_report& report)
     : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
+      overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
       curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error),
       metrics(report.metric), fallbacks(report.fallback_reason), layout(report.layout),
       seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
@@ -618,6 +620,21 @@ ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_p
   return parameterize_disk<ICM::Log_area_distortion>(mesh, args.metric, uvmap);
 }
 
+/// Why the parameterizer's map (an energy, or a prescribed border) is not written, or empty:
+/// it folds over itself, and one chart with a UV per vertex cannot be cut apart where it
+/// does, as the entropy's charts are.
+std::string why_an_overlap_is_refused(const Arguments& args, const ICM::Parameterization_report& report)
+{
+  if(args.keep_overlaps || report.overlapping_border_edges == 0)
+    return {};
+  return std::string(ICM::error_message(SMP::ERROR_NO_1_TO_1_MAPPING)) + ": the " +
+         (optimizes_energy(args) ? args.energy + " map" : "map with the " + args.boundary + " border") +
+         " folds over itself (" + std::to_string(report.overlapping_border_edges) +
+         " pairs of border edges cross) and is one chart, not cut where it overlaps" +
+         (optimizes_energy(args) ? " (without --energy, the entropy's map is)" : "") +
+         "; --keep-overlaps writes it anyway";
+}
+
 /// The entropy on any surface, by `ICM::parameterize` (cones and seams where needed): the
 /// figures of its run into `figures`, or the reason it failed.
 std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<Mesh::Vertex_index, double>& cones,
@@ -703,6 +720,8 @@ int run(const Arguments& args, const Failure_report& fail)
     const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
     if(report.status != SMP::OK)
       return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    if(const std::string overlap = why_an_overlap_is_refused(args, report); !overlap.empty())
+      return fail_after_reading(overlap);
     figures.emplace(report);
   }
   else if(optimizes_energy(args))
@@ -716,6 +735,8 @@ int run(const Arguments& args, const Failure_report& fail)
     const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
     if(report.status != SMP::OK)
       return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
+    if(const std::string overlap = why_an_overlap_is_refused(args, report); !overlap.empty())
+      return fail_after_reading(overlap);
     figures.emplace(report);
   }
   else

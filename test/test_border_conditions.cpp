@@ -151,28 +151,6 @@ Circle_fit fit_circle(const std::vector<vertex_descriptor>& loop, const UvMap& u
   return fit;
 }
 
-/// Pairs of border edges (any loops) whose UV segments meet other than at a common vertex.
-template <class UvMap>
-int crossing_border_edges(const Surface_mesh& mesh, const UvMap& uv)
-{
-  std::vector<halfedge_descriptor> border;
-  for(halfedge_descriptor h : halfedges(mesh))
-    if(is_border(h, mesh))
-      border.push_back(h);
-  int crossings = 0;
-  for(std::size_t i = 0; i < border.size(); ++i)
-    for(std::size_t j = i + 1; j < border.size(); ++j)
-    {
-      const vertex_descriptor a = source(border[i], mesh), b = target(border[i], mesh),
-                              c = source(border[j], mesh), d = target(border[j], mesh);
-      if(a == c || a == d || b == c || b == d)
-        continue;
-      const Kernel::Segment_2 s(get(uv, a), get(uv, b)), t(get(uv, c), get(uv, d));
-      crossings += CGAL::do_intersect(s, t);
-    }
-  return crossings;
-}
-
 struct Outcome
 {
   SMP::Error_code status;
@@ -383,7 +361,7 @@ TEST_P(BorderConditionCircleDomain, LoopsAreNestedCirclesWithoutCut)
   ASSERT_EQ(run.status, SMP::OK) << name << ": " << run.report.message;
   EXPECT_EQ(run.report.border_condition, "circle-domain");
   EXPECT_EQ(negative_and_zero_faces(mesh, uv), std::make_pair(0, 0)) << name;
-  EXPECT_EQ(crossing_border_edges(mesh, uv), 0) << name;
+  EXPECT_EQ(icm_test::crossing_border_edges(mesh, uv), 0) << name;
 
   const std::vector<std::vector<vertex_descriptor>> loops = border_loops(mesh);
   ASSERT_EQ(static_cast<int>(loops.size()), run.report.boundary_loops);

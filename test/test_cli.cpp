@@ -647,6 +647,30 @@ TEST(Cli, EnergyOnASurfaceThatIsNotADiskIsRefused)
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// An energy's map is one chart, which the CLI cannot cut where it folds: the horse's
+// u-square map swings a leg over another (28 pairs of border edges cross, 0 flipped faces).
+TEST(Cli, EnergyMapThatFoldsOverItselfIsRefusedUnlessKept)
+{
+  if(!icm_test::shared_dir_exists())
+    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
+  Sandbox box;
+  const std::string input = quote(icm_test::shared_path("horse.obj")) + " --energy u-square --quiet";
+  const Sandbox::Result refused = box.run(input + " -o out.obj --svg out.svg");
+  expect_clean_failure(box, refused, "no one-to-one mapping: the u-square map folds over itself (");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find(" pairs of border edges cross) and is one chart, not cut where it overlaps (without "
+                             "--energy, the entropy's map is); --keep-overlaps writes it anyway"),
+            std::string::npos)
+    << refused.err;
+
+  const std::string json = json_line_of(box.run(input + " -o kept.obj --json --keep-overlaps"));
+  const double crossings = json_number(json, "overlapping_border_edges");
+  EXPECT_GT(crossings, 0);
+  EXPECT_EQ(json_number(json, "raw_overlapping_border_edges"), crossings);
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_EQ(box.listing(), std::vector<std::string>{"kept.obj"});
+}
+
 TEST(Cli, EnergyConflictsWithConesAndSeams)
 {
   Sandbox box;

@@ -7,7 +7,10 @@
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/Kernel_traits.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/intersections.h>
 
 #include <Eigen/Core>
 
@@ -192,6 +195,31 @@ inline void expect_quadratic_convergence(const std::vector<double>& r)
       ++quadratic_steps;
     }
   EXPECT_GE(quadratic_steps, 1);
+}
+
+/// Pairs of border edges (any loops) of a FaceGraph whose UV segments meet other than at a
+/// common vertex, pair by pair: the plain count against which the library's is checked.
+template <class Mesh, class UvMap>
+int crossing_border_edges(const Mesh& mesh, const UvMap& uv)
+{
+  using Point = typename boost::property_traits<UvMap>::value_type;
+  using Segment = typename CGAL::Kernel_traits<Point>::Kernel::Segment_2;
+  using halfedge_descriptor = typename boost::graph_traits<Mesh>::halfedge_descriptor;
+  std::vector<halfedge_descriptor> border;
+  for(halfedge_descriptor h : halfedges(mesh))
+    if(is_border(h, mesh))
+      border.push_back(h);
+  int crossings = 0;
+  for(std::size_t i = 0; i < border.size(); ++i)
+    for(std::size_t j = i + 1; j < border.size(); ++j)
+    {
+      const auto a = source(border[i], mesh), b = target(border[i], mesh), c = source(border[j], mesh),
+                 d = target(border[j], mesh);
+      if(a == c || a == d || b == c || b == d)
+        continue;
+      crossings += CGAL::do_intersect(Segment(get(uv, a), get(uv, b)), Segment(get(uv, c), get(uv, d)));
+    }
+  return crossings;
 }
 
 } // namespace icm_test

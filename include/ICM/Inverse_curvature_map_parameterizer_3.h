@@ -9,6 +9,7 @@
 #define ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 
 #include <ICM/Border_conditions.h>
+#include <ICM/Border_overlaps.h>
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Curvature_space_optimizer.h>
@@ -131,6 +132,11 @@ struct Parameterization_report
   /// Vertices moved off the metric's layout to unflip a face of the mesh that its intrinsic
   /// triangulation does not have (see `unflip_by_moving_vertices`).
   int moved_vertices = 0;
+  /// Pairs of border edges whose UV segments meet (`count_border_overlaps`): with no flipped
+  /// face, more than 0 exactly when the map folds over itself (the horse's free-boundary
+  /// entropy map swings a leg over another). Reported, not refused: one UV per vertex leaves
+  /// no cut to take the overlap apart, which `ICM::parameterize` makes (`remove_overlaps`).
+  int overlapping_border_edges = 0;
   std::string layout;                    ///< "propagation" or "harmonic"
   /// The border condition's name ("free", "prescribed-curvature", "square", "circle",
   /// "polygon", "circle-domain"; doc/border_conditions.md).
@@ -358,6 +364,7 @@ private:
       report.max_layout_length_error = std::max(report.max_layout_length_error, chart.max_layout_length_error);
       report.flipped_faces += chart.flipped_faces;
       report.moved_vertices += chart.moved_vertices;
+      report.overlapping_border_edges += chart.overlapping_border_edges;
     }
     report.layout = "propagation";
     if(surface_report.status != CGAL::Surface_mesh_parameterization::OK)
@@ -548,6 +555,8 @@ private:
                        std::to_string(check.max_relative_length_error) + ")";
       return ERROR_NO_1_TO_1_MAPPING;
     }
+    report.overlapping_border_edges = count_border_overlaps(index, uv).crossing_pairs;
+    report.seconds_layout += run.lap();
     return OK;
   }
 
