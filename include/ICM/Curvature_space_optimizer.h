@@ -95,6 +95,14 @@ struct Curvature_space_options
   /// the metric with flips (flat off S on its Delaunay triangulation); when that refresh
   /// flipped edges the stopping test is taken again.
   int frozen_steps = 0;
+  /// The singular-values optimizer solves the line search's trial metrics only to max |k_N|
+  /// <= this times max_S |dE/du_S| at the step's start (at most 1e-4 rad, at least
+  /// `newton.tolerance`), as an inexact Newton's forcing term: a trial need not be flat to
+  /// round-off to be ranked, once its E is corrected to first order by the adjoint of the
+  /// reduced gradient's solve (E - y . k_N). The metric where it stops (or fails) is solved
+  /// to `newton.tolerance`. On the horse about half the chord steps (doc/energies.md). 0:
+  /// every trial to `newton.tolerance`.
+  double trial_tolerance_factor = 1.0;
   Lbfgs_preconditioner preconditioner = Lbfgs_preconditioner::Identity;
   /// Trial steps per line search before giving up.
   int max_line_search_steps = 30;
@@ -444,6 +452,11 @@ public:
       message_ = "the Laplacian of the interior could not be factorized";
       return false;
     }
+    // A trial metric solved only to a tolerance (`trial_tolerance_factor`) is off the flat
+    // one by du_N = Delta_NN^{-1} (-k_N): E there is E - y . k_N to first order, so that the
+    // line search ranks trials by the flat metrics' values, not by their residuals.
+    for(int i = 0; i < laplacian.size(); ++i)
+      value_ -= y[i] * state_.curvature()[laplacian.vertex(i)];
     Eigen::VectorXd full = gradient_;
     add_coupling(laplacian, y, full);
     reduced_.resize(singular_.size());
@@ -552,7 +565,9 @@ private:
   const std::vector<int>& singular_;
   Curvature_space_report& report_;
   static constexpr int max_chord_steps = 6;
-  static constexpr double fresh_factorization_above = 1e-6; // max |k_N|, radians
+  // Measured on the horse's energies (doc/energies.md): 1e-6 factorized 158 times for
+  // log area, 1e-3 86 times, in as many steps.
+  static constexpr double fresh_factorization_above = 1e-3; // max |k_N|, radians
   Energy_gradient partials_;
   Mass_preconditioner mass_;
   Eigen::VectorXd gradient_, reduced_;
@@ -618,9 +633,13 @@ Curvature_space_report minimize_energy_on_singular_values(
     ++report.refreshes;
     return solved ? problem.triangulation_version() - before : -1;
   };
+  // Trials solved to less than the Newton tolerance (`trial_tolerance_factor`): the result
+  // is solved again to it.
+  const bool inexact_trials = options.trial_tolerance_factor > 0;
   auto fail = [&](const std::string& why) {
-    // The result must be the metric with flips: refresh a frozen triangulation first.
-    if(frozen && steps_since_refresh > 0)
+    // The result must be the metric with flips (refresh a frozen triangulation first), flat
+    // to the Newton tolerance.
+    if((frozen && steps_since_refresh > 0) || inexact_trials)
     {
       frozen = false;
       problem.freeze(false);
@@ -693,6 +712,8 @@ Curvature_space_report minimize_energy_on_singular_values(
         if(flips > 0 && ++stopping_refreshes <= max_stopping_refreshes)
           continue;
       }
+      if(inexact_trials && !(problem.solve_interior(u, options.newton) && problem.evaluate()))
+        return fail("the metric where the optimizer stopped: " + problem.message());
       break;
     }
     if(report.iterations == options.max_iterations)
@@ -713,13 +734,17 @@ Curvature_space_report minimize_energy_on_singular_values(
     double alpha = memory.empty() ? 0.1 / d.cwiseAbs().maxCoeff() : 1.0;
     alpha = std::min(alpha, options.max_step / d.cwiseAbs().maxCoeff());
 
+    Newton_options trial_newton = options.newton;
+    if(inexact_trials)
+      trial_newton.tolerance =
+        std::max(options.newton.tolerance, std::min(1e-4, options.trial_tolerance_factor * largest));
     bool accepted = false;
     for(int trial = 0; trial < options.max_line_search_steps; ++trial)
     {
       u_trial = u + alpha * extension;
       for(std::size_t s = 0; s < singular.size(); ++s)
         u_trial[singular[s]] = u[singular[s]] + alpha * d[s];
-      if(!problem.solve_interior(u_trial, options.newton) || !problem.evaluate())
+      if(!problem.solve_interior(u_trial, trial_newton) || !problem.evaluate())
       {
         alpha *= 0.25; // beyond the metric's valid region, or Newton could not get there
         continue;
