@@ -277,6 +277,41 @@ TEST(EnergyOptimizer, BothOptimizersReachTheSameOptimum)
   compare(ICM::U_square(), "u-square");
 }
 
+/// The log-area optimum of `name` (intrinsic Delaunay, tolerance 1e-8) from the entropy
+/// optimum with `first` and with `second` options: both converge, the second to the metric
+/// with flips, flat off S to 1e-9; the two reports and how far apart the two u are.
+struct Two_log_area_runs
+{
+  ICM::Curvature_space_report first, second;
+  double u_difference = HUGE_VAL;
+};
+
+Two_log_area_runs two_log_area_runs(const char* name, ICM::Curvature_space_options first,
+                                    ICM::Curvature_space_options second)
+{
+  const Mesh_index index = index_file(name);
+  const std::vector<char> S = ICM::boundary_singular_set(index);
+  const ICM::Intrinsic_delaunay_metric metric(index);
+  const Eigen::VectorXd start = entropy_optimum(index, metric);
+  Eigen::VectorXd u_first = start, u_second = start;
+  first.tolerance = second.tolerance = 1e-8;
+  Two_log_area_runs runs;
+  runs.first = ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), u_first, first);
+  EXPECT_TRUE(runs.first.converged) << name << ": " << runs.first.message;
+  runs.second = ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), u_second, second);
+  EXPECT_TRUE(runs.second.converged) << name << ": " << runs.second.message;
+  runs.u_difference = (u_second - u_first).cwiseAbs().maxCoeff();
+  ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
+  Eigen::VectorXd k;
+  EXPECT_EQ(curvature.evaluate(u_second, k), 0) << name;
+  double largest = 0;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    if(!S[v])
+      largest = std::max(largest, std::abs(k[v]));
+  EXPECT_LT(largest, 1e-9) << name;
+  return runs;
+}
+
 TEST(EnergyOptimizer, AFrozenTriangulationReachesTheOptimumWithFlips)
 {
   // Curvature_space_options::frozen_steps: the intrinsic triangulation kept between
@@ -284,39 +319,17 @@ TEST(EnergyOptimizer, AFrozenTriangulationReachesTheOptimumWithFlips)
   // triangulation) and the same optimum as flipping at every evaluation.
   for(const char* name : {"nefertiti.off", "three_peaks.off"})
   {
-    const Mesh_index index = index_file(name);
-    const std::vector<char> S = ICM::boundary_singular_set(index);
-    const ICM::Intrinsic_delaunay_metric metric(index);
-    const Eigen::VectorXd start = entropy_optimum(index, metric);
-    ICM::Curvature_space_options options = tight_options();
-    options.tolerance = 1e-8;
-    Eigen::VectorXd flipping = start, frozen = start;
-    options.frozen_steps = 0;
-    const ICM::Curvature_space_report a =
-      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), flipping, options);
-    ASSERT_TRUE(a.converged) << name << ": " << a.message;
-    EXPECT_EQ(a.refreshes, 0) << name;
-    options.frozen_steps = 5;
-    const ICM::Curvature_space_report b =
-      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), frozen, options);
-    ASSERT_TRUE(b.converged) << name << ": " << b.message;
-    EXPECT_GE(b.refreshes, 1) << name;
-    EXPECT_LT((frozen - flipping).cwiseAbs().maxCoeff(), 1e-5) << name;
-    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-7 * a.final_energy) << name;
-    // Flat off S for the metric with flips.
-    ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
-    Eigen::VectorXd k;
-    ASSERT_EQ(curvature.evaluate(frozen, k), 0);
-    for(int v = 0; v < index.number_of_vertices(); ++v)
-    {
-      if(!S[v])
-      {
-        ASSERT_LT(std::abs(k[v]), 1e-9) << name << ", vertex " << v;
-      }
-    }
-    std::cout << name << ": log-area with flips " << a.iterations << " steps, frozen for 5 " << b.iterations
-              << " steps and " << b.refreshes << " refreshes, |u difference| "
-              << (frozen - flipping).cwiseAbs().maxCoeff() << "\n";
+    ICM::Curvature_space_options flipping = tight_options(), frozen = tight_options();
+    flipping.frozen_steps = 0;
+    frozen.frozen_steps = 5;
+    const Two_log_area_runs runs = two_log_area_runs(name, flipping, frozen);
+    EXPECT_EQ(runs.first.refreshes, 0) << name;
+    EXPECT_GE(runs.second.refreshes, 1) << name;
+    EXPECT_LT(runs.u_difference, 1e-5) << name;
+    EXPECT_NEAR(runs.first.final_energy, runs.second.final_energy, 1e-7 * runs.first.final_energy) << name;
+    std::cout << name << ": log-area with flips " << runs.first.iterations << " steps, frozen for 5 "
+              << runs.second.iterations << " steps and " << runs.second.refreshes << " refreshes, |u difference| "
+              << runs.u_difference << "\n";
   }
 }
 
@@ -327,35 +340,16 @@ TEST(EnergyOptimizer, InexactTrialsReachTheExactTrialsOptimumWithFewerChordSteps
   // of trials solved to round-off; the result is flat to the Newton tolerance.
   for(const char* name : {"nefertiti.off", "three_peaks.off"})
   {
-    const Mesh_index index = index_file(name);
-    const std::vector<char> S = ICM::boundary_singular_set(index);
-    const ICM::Intrinsic_delaunay_metric metric(index);
-    const Eigen::VectorXd start = entropy_optimum(index, metric);
-    ICM::Curvature_space_options options = tight_options();
-    options.tolerance = 1e-8;
-    Eigen::VectorXd exact = start, inexact = start;
-    options.trial_tolerance_factor = 0;
-    const ICM::Curvature_space_report a =
-      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), exact, options);
-    ASSERT_TRUE(a.converged) << name << ": " << a.message;
-    options.trial_tolerance_factor = 1;
-    const ICM::Curvature_space_report b =
-      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Log_area_distortion(), inexact, options);
-    ASSERT_TRUE(b.converged) << name << ": " << b.message;
-    EXPECT_LT((inexact - exact).cwiseAbs().maxCoeff(), 1e-5) << name;
-    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-8 * a.final_energy) << name;
-    EXPECT_LT(b.newton_iterations, a.newton_iterations) << name;
-    ICM::Curvature_map<ICM::Intrinsic_delaunay_metric> curvature(index, metric);
-    Eigen::VectorXd k;
-    ASSERT_EQ(curvature.evaluate(inexact, k), 0);
-    double largest = 0;
-    for(int v = 0; v < index.number_of_vertices(); ++v)
-      if(!S[v])
-        largest = std::max(largest, std::abs(k[v]));
-    EXPECT_LT(largest, 1e-9) << name;
-    std::cout << name << ": log-area with exact trials " << a.iterations << " steps, " << a.newton_iterations
-              << " chord and Newton steps; inexact " << b.iterations << " steps, " << b.newton_iterations
-              << "; |u difference| " << (inexact - exact).cwiseAbs().maxCoeff() << "\n";
+    ICM::Curvature_space_options exact = tight_options(), inexact = tight_options();
+    exact.trial_tolerance_factor = 0;
+    inexact.trial_tolerance_factor = 1;
+    const Two_log_area_runs runs = two_log_area_runs(name, exact, inexact);
+    EXPECT_LT(runs.u_difference, 1e-5) << name;
+    EXPECT_NEAR(runs.first.final_energy, runs.second.final_energy, 1e-8 * runs.first.final_energy) << name;
+    EXPECT_LT(runs.second.newton_iterations, runs.first.newton_iterations) << name;
+    std::cout << name << ": log-area with exact trials " << runs.first.iterations << " steps, "
+              << runs.first.newton_iterations << " chord and Newton steps; inexact " << runs.second.iterations
+              << " steps, " << runs.second.newton_iterations << "; |u difference| " << runs.u_difference << "\n";
   }
 }
 
