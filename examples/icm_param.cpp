@@ -620,6 +620,29 @@ ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_p
   return parameterize_disk<ICM::Log_area_distortion>(mesh, args.metric, uvmap);
 }
 
+/// Why `mesh` is not the surface that --boundary or --energy needs (a disk; a genus-0 surface
+/// with borders for a circle domain), or empty.
+std::string why_the_parameterizer_refuses(const Arguments& args, Mesh& mesh)
+{
+  if(prescribes_border(args))
+  {
+    const bool circle_domain = args.boundary == "circle-domain";
+    const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
+    return not_a_disk.empty()
+             ? not_a_disk
+             : "--boundary " + args.boundary +
+                 (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
+                                : " needs a disk (one component, one boundary loop, genus 0), and ") +
+                 not_a_disk;
+  }
+  const std::string not_a_disk = why_not_a_disk(mesh);
+  return not_a_disk.empty() ? not_a_disk
+                            : "--energy " + args.energy + " needs a disk (one component, one boundary loop, genus 0), and " +
+                                not_a_disk +
+                                ": energies other than the entropy are not available on surfaces cut through "
+                                "cones yet (leave out --energy for the entropy)";
+}
+
 /// Why the parameterizer's map (an energy, or a prescribed border) is not written, or empty:
 /// it folds over itself, and one chart with a UV per vertex cannot be cut apart where it
 /// does, as the entropy's charts are.
@@ -708,30 +731,10 @@ int run(const Arguments& args, const Failure_report& fail)
 
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
   std::optional<Run_figures> figures;
-  if(prescribes_border(args))
+  if(uses_parameterizer(args))
   {
-    const bool circle_domain = args.boundary == "circle-domain";
-    const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
-    if(!not_a_disk.empty())
-      return fail_after_reading("--boundary " + args.boundary +
-                                (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
-                                               : " needs a disk (one component, one boundary loop, genus 0), and ") +
-                                not_a_disk);
-    const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
-    if(report.status != SMP::OK)
-      return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
-    if(const std::string overlap = why_an_overlap_is_refused(args, report); !overlap.empty())
-      return fail_after_reading(overlap);
-    figures.emplace(report);
-  }
-  else if(optimizes_energy(args))
-  {
-    const std::string not_a_disk = why_not_a_disk(mesh);
-    if(!not_a_disk.empty())
-      return fail_after_reading("--energy " + args.energy +
-                                " needs a disk (one component, one boundary loop, genus 0), and " + not_a_disk +
-                                ": energies other than the entropy are not available on surfaces cut through "
-                                "cones yet (leave out --energy for the entropy)");
+    if(const std::string refused = why_the_parameterizer_refuses(args, mesh); !refused.empty())
+      return fail_after_reading(refused);
     const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
     if(report.status != SMP::OK)
       return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
