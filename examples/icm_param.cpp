@@ -8,11 +8,10 @@
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
 //             [--keep-overlaps]          (icm_param --help for all)
 //
-// The default energy, the curvature entropy, goes through ICM::parameterize (every surface).
-// Any other energy is minimised over the free-boundary conformal maps of a disk by
-// Inverse_curvature_map_parameterizer_3 (icm_param_energy.h): a mesh that is not one disk,
-// or cones and seams, are refused with it, because the energy optimizers do not work on a
-// surface cut through cones yet.
+// Every energy goes through ICM::parameterize (every surface, cones and seams where its
+// topology needs them): the curvature entropy (the default) directly, another energy
+// minimised over the border and the cones from there (icm_param_energy.h). A prescribed
+// border (--boundary) goes through Inverse_curvature_map_parameterizer_3, on a disk.
 //
 // The input is untrusted: it is read by ICM's own checked readers (IO/read_polygon_soup.h),
 // repaired only as users expect (isolated vertices dropped, non-manifold vertices split,
@@ -185,8 +184,7 @@ int usage_error(const std::string& reason, const Failure_report& fail)
   return code;
 }
 
-/// What --energy takes: the entropy (ICM::parameterize, every surface), then the energies
-/// minimised on disks (icm_param_energy.h).
+/// What --energy takes: the entropy, then the energies minimised from it (icm_param_energy.h).
 std::vector<std::string> energy_names()
 {
   return {ICM::Curvature_entropy::name, ICM::U_square::name, ICM::Area_distortion::name,
@@ -201,32 +199,23 @@ std::vector<std::string> boundary_names() { return {"free", "circle", "square", 
 
 bool prescribes_border(const Arguments& args) { return args.boundary != "free"; }
 
-/// Whether the run goes through Inverse_curvature_map_parameterizer_3 (one chart, no cones)
-/// rather than ICM::parameterize (every surface, cones and seams).
-bool uses_parameterizer(const Arguments& args) { return optimizes_energy(args) || prescribes_border(args); }
-
-/// Why the options cannot go with the energy or the border condition, or empty: an energy
-/// other than the entropy is minimised on a disk with a free boundary, and a prescribed border
-/// leaves no choice to an energy; neither path has cones or seams.
+/// Why the options cannot go with the energy or the border condition, or empty: a prescribed
+/// border leaves no choice to an energy, and is solved on a disk without cones or seams.
 std::string energy_conflict(const Arguments& args)
 {
-  if(optimizes_energy(args) && prescribes_border(args))
+  if(!prescribes_border(args))
+    return {};
+  if(optimizes_energy(args))
     return "--energy " + args.energy + " cannot go with --boundary " + args.boundary +
            ": a prescribed border leaves one conformal map, nothing for an energy to choose";
-  if(!uses_parameterizer(args))
-    return {};
   const char* option = !args.cones.empty() ? "--cone"
                        : !args.seams.empty() ? "--seams"
                        : args.cones_asked    ? "--cones"
                                              : nullptr;
   if(option == nullptr)
     return {};
-  if(prescribes_border(args))
-    return std::string(option) + " cannot go with --boundary " + args.boundary +
-           ": a prescribed border is solved on the mesh as it is, without cones or seams";
-  return std::string(option) + " cannot go with --energy " + args.energy +
-         ": energies other than the entropy are minimised on disks with a free boundary only, "
-         "without cones or seams (leave out --energy for the entropy)";
+  return std::string(option) + " cannot go with --boundary " + args.boundary +
+         ": a prescribed border is solved on the mesh as it is, without cones or seams";
 }
 
 /// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
@@ -255,7 +244,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->type_name("NAME");
   app.add_option("--energy", args.energy,
                  "the energy minimised (default " + args.energy +
-                   "); any other minimises it over the free-boundary maps of a disk, without cones or seams")
+                   "); any other is minimised from it over the same border and cones")
     ->check(CLI::IsMember(energy_names()))
     ->type_name("NAME");
   app.add_option("--boundary", args.boundary,
@@ -271,7 +260,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->type_name("VERTEX:DEGREES");
   app.add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
     ->type_name("FILE");
-  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps); with --energy or a prescribed --boundary, whose one chart is not cut, write a map that does rather than fail");
+  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one chart is not cut, write a map that does rather than fail");
   app.add_flag("--triangulate", args.triangulate, "triangulate polygons (otherwise they are refused)");
   app.add_flag("-q,--quiet", args.quiet, "no progress line on stderr for large meshes");
   try
@@ -442,15 +431,34 @@ struct Run_figures
   int degenerate_faces = 0, border_iterations = 0;
   double circle_deviation = 0;
 
-  /// `ICM::parameterize`'s run (the entropy) with `seam_edges` cut.
-  Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_)
+  /// `ICM::parameterize`'s run of `energy_` with `seam_edges` cut. With several components
+  /// the energies are their means weighted by faces, the steps their sum.
+  Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_, const std::string& energy_)
     : charts(0), components(static_cast<int>(report.charts.size())), overlaps(0), raw_overlaps(0),
       seam_edges(seam_edges_), seconds_cones(report.seconds_cones), seconds_optimum(report.seconds_optimum),
       seconds_cut(report.seconds_cut), seconds_layout(report.seconds_layout),
-      seconds_parameterize(report.seconds_total)
+      seconds_parameterize(report.seconds_total), energy(energy_),
+      optimized_energy(energy_ != ICM::Curvature_entropy::name)
   {
+    int faces = 0;
+    for(const ICM::Chart_report& c : report.charts)
+      faces += c.faces;
     for(const ICM::Chart_report& c : report.charts)
     {
+      if(optimized_energy)
+      {
+        // A chart whose singular set left nothing to choose kept the entropy's map: its E
+        // was not measured (NaN), and it adds nothing.
+        const double share = static_cast<double>(c.faces) / faces;
+        energy_iterations += c.energy_iterations;
+        if(std::isfinite(c.initial_energy))
+        {
+          initial_energy += share * c.initial_energy;
+          final_energy += share * c.final_energy;
+        }
+        if(energy_message.empty())
+          energy_message = c.energy_message;
+      }
       cones += static_cast<int>(c.cones.size());
       genus += c.genus;
       loops += c.boundary_loops;
@@ -469,18 +477,14 @@ struct Run_figures
     }
   }
 
-  /// `Inverse_curvature_map_parameterizer_3`'s run (an energy other than the entropy, or a
-  /// prescribed border): one chart, never cut.
+  /// `Inverse_curvature_map_parameterizer_3`'s run (a prescribed border): one chart, never cut.
   explicit Run_figures(const ICM::Parameterization_report& report)
     : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
       overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
       curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error),
       metrics(report.metric), fallbacks(report.fallback_reason), layout(report.layout),
       seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
-      seconds_parameterize(report.seconds_total), energy(report.energy),
-      optimized_energy(report.energy != ICM::Curvature_entropy::name),
-      energy_iterations(report.energy_iterations), initial_energy(report.initial_energy),
-      final_energy(report.final_energy), energy_message(report.energy_message), boundary(report.border_condition),
+      seconds_parameterize(report.seconds_total), boundary(report.border_condition),
       degenerate_faces(report.degenerate_faces), border_iterations(report.border_iterations),
       circle_deviation(report.circle_deviation)
   {}
@@ -599,68 +603,49 @@ std::string why_not_a_disk(Mesh& mesh, bool several_loops = false)
                     : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
 }
 
-/// An energy other than the entropy on the disk `mesh`, or a prescribed border, chosen by
-/// name; each energy's parameterizer is instantiated in its own file (icm_param_energy_*.cpp),
-/// the border conditions' in icm_param_border.cpp.
-ICM::Parameterization_report run_energy(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
+/// A prescribed border by name; the parameterizer is instantiated for each in
+/// icm_param_border.cpp.
+ICM::Parameterization_report run_border(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
 {
   using namespace icm_param;
   if(args.boundary == "circle")
-    return parameterize_disk<ICM::Curvature_entropy, ICM::Circular_border<Mesh>>(mesh, args.metric, uvmap);
+    return parameterize_disk<ICM::Circular_border<Mesh>>(mesh, args.metric, uvmap);
   if(args.boundary == "square")
-    return parameterize_disk<ICM::Curvature_entropy, ICM::Square_border<Mesh>>(mesh, args.metric, uvmap);
-  if(args.boundary == "circle-domain")
-    return parameterize_disk<ICM::Curvature_entropy, ICM::Circle_domain>(mesh, args.metric, uvmap);
-  if(args.energy == ICM::U_square::name)
-    return parameterize_disk<ICM::U_square>(mesh, args.metric, uvmap);
-  if(args.energy == ICM::Area_distortion::name)
-    return parameterize_disk<ICM::Area_distortion>(mesh, args.metric, uvmap);
-  if(args.energy == ICM::Angle_distortion::name)
-    return parameterize_disk<ICM::Angle_distortion>(mesh, args.metric, uvmap);
-  return parameterize_disk<ICM::Log_area_distortion>(mesh, args.metric, uvmap);
+    return parameterize_disk<ICM::Square_border<Mesh>>(mesh, args.metric, uvmap);
+  return parameterize_disk<ICM::Circle_domain>(mesh, args.metric, uvmap);
 }
 
-/// Why `mesh` is not the surface that --boundary or --energy needs (a disk; a genus-0 surface
-/// with borders for a circle domain), or empty.
-std::string why_the_parameterizer_refuses(const Arguments& args, Mesh& mesh)
+/// Why `mesh` is not the surface that --boundary needs (a disk; a genus-0 surface with
+/// borders for a circle domain), or empty.
+std::string why_the_border_is_refused(const Arguments& args, Mesh& mesh)
 {
-  if(prescribes_border(args))
-  {
-    const bool circle_domain = args.boundary == "circle-domain";
-    const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
-    return not_a_disk.empty()
-             ? not_a_disk
-             : "--boundary " + args.boundary +
-                 (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
-                                : " needs a disk (one component, one boundary loop, genus 0), and ") +
-                 not_a_disk;
-  }
-  const std::string not_a_disk = why_not_a_disk(mesh);
-  return not_a_disk.empty() ? not_a_disk
-                            : "--energy " + args.energy + " needs a disk (one component, one boundary loop, genus 0), and " +
-                                not_a_disk +
-                                ": energies other than the entropy are not available on surfaces cut through "
-                                "cones yet (leave out --energy for the entropy)";
+  const bool circle_domain = args.boundary == "circle-domain";
+  const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
+  return not_a_disk.empty()
+           ? not_a_disk
+           : "--boundary " + args.boundary +
+               (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
+                              : " needs a disk (one component, one boundary loop, genus 0), and ") +
+               not_a_disk;
 }
 
-/// Why the parameterizer's map (an energy, or a prescribed border) is not written, or empty:
-/// it folds over itself, and one chart with a UV per vertex cannot be cut apart where it
-/// does, as the entropy's charts are.
+/// Why the map of a prescribed border is not written, or empty: it folds over itself, and
+/// one chart with a UV per vertex cannot be cut apart where it does, as the free border's
+/// charts are.
 std::string why_an_overlap_is_refused(const Arguments& args, const ICM::Parameterization_report& report)
 {
   if(args.keep_overlaps || report.overlapping_border_edges == 0)
     return {};
-  return std::string(ICM::error_message(SMP::ERROR_NO_1_TO_1_MAPPING)) + ": the " +
-         (optimizes_energy(args) ? args.energy + " map" : "map with the " + args.boundary + " border") +
-         " folds over itself (" + std::to_string(report.overlapping_border_edges) +
-         " pairs of border edges cross) and is one chart, not cut where it overlaps" +
-         (optimizes_energy(args) ? " (without --energy, the entropy's map is)" : "") +
-         "; --keep-overlaps writes it anyway";
+  return std::string(ICM::error_message(SMP::ERROR_NO_1_TO_1_MAPPING)) + ": the map with the " + args.boundary +
+         " border folds over itself (" + std::to_string(report.overlapping_border_edges) +
+         " pairs of border edges cross) and is one chart, not cut where it overlaps (with a free border it "
+         "is); --keep-overlaps writes it anyway";
 }
 
-/// The entropy on any surface, by `ICM::parameterize` (cones and seams where needed): the
-/// figures of its run into `figures`, or the reason it failed.
-std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<Mesh::Vertex_index, double>& cones,
+/// Any energy on any surface, by `ICM::parameterize` (cones and seams where needed): the
+/// figures of its run into `figures`, or the reason it failed. The entropy's runs are
+/// instantiated here, the other energies' each in its own file (icm_param_energy.h).
+std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<Mesh::Vertex_index, double>& cones,
                         const std::vector<Mesh::Edge_index>& user_seams, icm_param::Corner_uv_map uvmap,
                         std::optional<Run_figures>& figures)
 {
@@ -676,8 +661,17 @@ std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<
   options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
 
   std::vector<Mesh::Edge_index> seams;
+  using namespace icm_param;
   const ICM::Surface_parameterization_report report =
-    args.metric == ICM::Circle_packing_metric::name
+    args.energy == ICM::U_square::name
+      ? parameterize_surface<ICM::U_square>(mesh, args.metric, uvmap, options, cones, seams, user_seams)
+    : args.energy == ICM::Area_distortion::name
+      ? parameterize_surface<ICM::Area_distortion>(mesh, args.metric, uvmap, options, cones, seams, user_seams)
+    : args.energy == ICM::Angle_distortion::name
+      ? parameterize_surface<ICM::Angle_distortion>(mesh, args.metric, uvmap, options, cones, seams, user_seams)
+    : args.energy == ICM::Log_area_distortion::name
+      ? parameterize_surface<ICM::Log_area_distortion>(mesh, args.metric, uvmap, options, cones, seams, user_seams)
+    : args.metric == ICM::Circle_packing_metric::name
       ? run_metric<ICM::Circle_packing_metric>(mesh, uvmap, options, cones, seams, user_seams)
     : args.metric == ICM::Inversive_distance_metric::name
       ? run_metric<ICM::Inversive_distance_metric>(mesh, uvmap, options, cones, seams, user_seams)
@@ -687,7 +681,7 @@ std::string run_entropy(const Arguments& args, const Mesh& mesh, const std::map<
   progress.finish();
   if(report.status != SMP::OK)
     return std::string(ICM::error_message(report.status)) + ": " + report.message;
-  figures.emplace(report, seams.size());
+  figures.emplace(report, seams.size(), args.energy);
   return {};
 }
 
@@ -731,11 +725,11 @@ int run(const Arguments& args, const Failure_report& fail)
 
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
   std::optional<Run_figures> figures;
-  if(uses_parameterizer(args))
+  if(prescribes_border(args))
   {
-    if(const std::string refused = why_the_parameterizer_refuses(args, mesh); !refused.empty())
+    if(const std::string refused = why_the_border_is_refused(args, mesh); !refused.empty())
       return fail_after_reading(refused);
-    const ICM::Parameterization_report report = run_energy(args, mesh, uvmap);
+    const ICM::Parameterization_report report = run_border(args, mesh, uvmap);
     if(report.status != SMP::OK)
       return fail_after_reading(std::string(ICM::error_message(report.status)) + ": " + report.message);
     if(const std::string overlap = why_an_overlap_is_refused(args, report); !overlap.empty())
@@ -744,7 +738,7 @@ int run(const Arguments& args, const Failure_report& fail)
   }
   else
   {
-    const std::string reason = run_entropy(args, mesh, cones, user_seams, uvmap, figures);
+    const std::string reason = run_surface(args, mesh, cones, user_seams, uvmap, figures);
     if(!reason.empty())
       return fail_after_reading(reason);
   }

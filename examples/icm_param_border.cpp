@@ -7,12 +7,10 @@
 #include <ICM/Border_conditions.h>
 
 namespace icm_param {
-template ICM::Parameterization_report
-parameterize_disk<ICM::Curvature_entropy, ICM::Circular_border<Mesh>>(Mesh& mesh, const std::string& metric,
-                                                                      Corner_uv_map uv);
-template ICM::Parameterization_report
-parameterize_disk<ICM::Curvature_entropy, ICM::Square_border<Mesh>>(Mesh& mesh, const std::string& metric,
-                                                                    Corner_uv_map uv);
-template ICM::Parameterization_report
-parameterize_disk<ICM::Curvature_entropy, ICM::Circle_domain>(Mesh& mesh, const std::string& metric, Corner_uv_map uv);
+template ICM::Parameterization_report parameterize_disk<ICM::Circular_border<Mesh>>(Mesh& mesh, const std::string& metric,
+                                                                                    Corner_uv_map uv);
+template ICM::Parameterization_report parameterize_disk<ICM::Square_border<Mesh>>(Mesh& mesh, const std::string& metric,
+                                                                                  Corner_uv_map uv);
+template ICM::Parameterization_report parameterize_disk<ICM::Circle_domain>(Mesh& mesh, const std::string& metric,
+                                                                            Corner_uv_map uv);
 } // namespace icm_param

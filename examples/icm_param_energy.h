@@ -1,20 +1,25 @@
-// icm_param's runs of Inverse_curvature_map_parameterizer_3<Mesh, Metric, CGAL::Default,
-// Energy, Border>: an energy other than the curvature entropy (free border, on a disk), or a
-// border condition other than the free one (--boundary, with the entropy). Declared here and
-// instantiated one energy, or the border conditions, per translation unit
-// (icm_param_energy_*.cpp, icm_param_border.cpp): each file (one energy, four metrics) takes about 41 s of CPU at
-// -O3 on a 2-core EPYC, icm_param.cpp 68 s; sixteen instantiations in icm_param.cpp would make
-// one file of some 2.5 minutes, while in five files `make -j2` builds them in about two.
+// icm_param's runs other than the entropy's, declared here and instantiated one energy, or
+// the border conditions, per translation unit (icm_param_energy_*.cpp, icm_param_border.cpp):
+// - `parameterize_surface<Energy>`: ICM::parameterize with an energy other than the curvature
+//   entropy (--energy), on every surface, with its cones and seams;
+// - `parameterize_disk<Border>`: Inverse_curvature_map_parameterizer_3 with the entropy and
+//   a prescribed border condition (--boundary), on a disk.
+// Each file (one energy, four metrics) takes about 40 s of CPU at -O3 on a 2-core EPYC,
+// icm_param.cpp 68 s; all in icm_param.cpp would make one file of several minutes, while in
+// six files `make -j2` builds them in about half that.
 
 #ifndef ICM_PARAM_ENERGY_H
 #define ICM_PARAM_ENERGY_H
 
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <map>
 #include <string>
+#include <vector>
 
 namespace icm_param {
 
@@ -23,11 +28,21 @@ using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 /// A UV per corner: the UV of target(h) in face(h), as ICM::parameterize writes it.
 using Corner_uv_map = Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2>;
 
-/// The minimum of `Energy` over the conformal maps of `mesh` with the border condition `Border`
-/// in the class of the metric named `metric` (`Metric::name`), by CGAL's parameterize() from
-/// the mesh's longest border. Every corner of a face gets its vertex's UV in `uv`. The caller
-/// checks that `mesh` is one component (the parameterizer would take only the border's).
-template <class Energy, class Border = ICM::Free_border>
+/// `ICM::parameterize` with `Energy` in the class of the metric named `metric`
+/// (`Metric::name`): the seams of every chart into `seams`.
+template <class Energy>
+ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, const std::string& metric,
+                                                          Corner_uv_map uv,
+                                                          const ICM::Surface_parameterization_options& options,
+                                                          const std::map<Mesh::Vertex_index, double>& cones,
+                                                          std::vector<Mesh::Edge_index>& seams,
+                                                          const std::vector<Mesh::Edge_index>& user_seams);
+
+/// The curvature entropy's conformal map of `mesh` with the border condition `Border` in the
+/// class of the metric named `metric`, by CGAL's parameterize() from the mesh's longest
+/// border. Every corner of a face gets its vertex's UV in `uv`. The caller checks that `mesh`
+/// is one component (the parameterizer would take only the border's).
+template <class Border>
 ICM::Parameterization_report parameterize_disk(Mesh& mesh, const std::string& metric, Corner_uv_map uv);
 
 } // namespace icm_param

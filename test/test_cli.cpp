@@ -636,56 +636,47 @@ TEST(Cli, BadEnergyIsAUsageError)
   EXPECT_TRUE(box.listing().empty());
 }
 
-TEST(Cli, EnergyOnASurfaceThatIsNotADiskIsRefused)
+TEST(Cli, EnergyRunsOnEveryTopology)
 {
+  // Closed genus 2 and genus 0 with seven holes: the energy is minimised over the border and
+  // the cones the entropy's run chose, and the charts are cut where they overlap, as the
+  // entropy's are.
   Sandbox box;
-  expect_clean_failure(box, box.run(quote(data_path("eight.off")) + " -o out.obj --svg out.svg --energy log-area"),
-                       "--energy log-area needs a disk (one component, one boundary loop, genus 0), and it is "
-                       "closed, genus 2");
-  const Sandbox::Result r = box.run(quote(data_path("pig.off")) + " -o out.obj --energy angle");
-  expect_clean_failure(box, r, "it has genus 0 and 7 boundary loops");
-  EXPECT_EQ(r.exit_code, 1);
-}
-
-// An energy's map is one chart, which the CLI cannot cut where it folds: the horse's
-// u-square map swings a leg over another (28 pairs of border edges cross, 0 flipped faces).
-TEST(Cli, EnergyMapThatFoldsOverItselfIsRefusedUnlessKept)
-{
-  if(!icm_test::shared_dir_exists())
-    GTEST_SKIP() << "shared mesh directory " << ICM_SHARED_MESH_DIR << " not found";
-  Sandbox box;
-  const std::string input = quote(icm_test::shared_path("horse.obj")) + " --energy u-square --quiet";
-  const Sandbox::Result refused = box.run(input + " -o out.obj --svg out.svg");
-  expect_clean_failure(box, refused, "no one-to-one mapping: the u-square map folds over itself (");
-  EXPECT_EQ(refused.exit_code, 1);
-  EXPECT_NE(refused.err.find(" pairs of border edges cross) and is one chart, not cut where it overlaps (without "
-                             "--energy, the entropy's map is); --keep-overlaps writes it anyway"),
-            std::string::npos)
-    << refused.err;
-
-  const std::string json = json_line_of(box.run(input + " -o kept.obj --json --keep-overlaps"));
-  const double crossings = json_number(json, "overlapping_border_edges");
-  EXPECT_GT(crossings, 0);
-  EXPECT_EQ(json_number(json, "raw_overlapping_border_edges"), crossings);
-  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
-  EXPECT_EQ(box.listing(), std::vector<std::string>{"kept.obj"});
-}
-
-TEST(Cli, EnergyConflictsWithConesAndSeams)
-{
-  Sandbox box;
-  const std::string input = quote(data_path("nefertiti.off"));
-  for(const std::string& options : std::vector<std::string>{"--cone 100:90", "--cones auto", "--cones 4",
-                                                            "--seams " + quote(data_path("sphere966.selection.txt"))})
+  for(const char* name : {"eight.off", "pig.off"})
   {
-    const Sandbox::Result r = box.run(input + " -o out.obj --energy log-area " + options);
-    EXPECT_EQ(r.exit_code, 2) << options;
-    const std::string option = options.substr(0, options.find(' '));
-    EXPECT_NE(r.err.find("icm_param: " + option + " cannot go with --energy log-area"), std::string::npos) << r.err;
-    EXPECT_TRUE(box.listing().empty()) << options;
+    SCOPED_TRACE(name);
+    const std::string input = quote(data_path(name));
+    const std::string entropy = json_line_of(box.run(input + " -o entropy.obj --json"));
+    const std::string json = json_line_of(box.run(input + " -o log_area.obj --svg log_area.svg --json --energy log-area"));
+    EXPECT_EQ(json_value(json, "energy"), "\"log-area\"");
+    EXPECT_EQ(json_value(json, "cones"), json_value(entropy, "cones"));
+    EXPECT_GT(json_number(json, "cones"), 0);
+    EXPECT_GE(json_number(json, "energy_iterations"), 1);
+    EXPECT_LT(json_number(json, "final_energy"), json_number(json, "initial_energy"));
+    EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+    EXPECT_EQ(json_number(json, "overlapping_border_edges"), 0);
+    EXPECT_LT(json_number(json, "seam_length_error"), 1e-9);
+    EXPECT_LT(json_number(json, "max_curvature_error"), 1e-9);
+    EXPECT_LT(json_number(json, "log_area_distortion"), json_number(entropy, "log_area_distortion"));
   }
-  // --cones 0 asks for no cone, which the disk has anyway.
-  EXPECT_EQ(box.run(input + " -o out.obj --energy log-area --cones 0").exit_code, 0);
+}
+
+TEST(Cli, EnergyTakesConesAndSeams)
+{
+  Sandbox box;
+  // A user cone of 90 degrees on a disk keeps its angle while the angle energy moves the
+  // border.
+  std::string json =
+    json_line_of(box.run(quote(data_path("nefertiti.off")) + " -o cone.obj --json --energy angle --cone 100:90"));
+  EXPECT_EQ(json_number(json, "cones"), 1);
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_GE(json_number(json, "energy_iterations"), 1);
+  // The user's own cut of the sphere.
+  json = json_line_of(box.run(quote(data_path("sphere966.off")) + " -o seams.obj --json --energy log-area --seams " +
+                              quote(data_path("sphere966.selection.txt"))));
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_GE(json_number(json, "energy_iterations"), 1);
+  EXPECT_LT(json_number(json, "seam_length_error"), 1e-9);
 }
 
 // --- --boundary --------------------------------------------------------------------------

@@ -145,16 +145,26 @@ inline std::vector<int> singular_list(const std::vector<char>& is_singular)
 
 /// Why the optimizers cannot run on this singular set, or an empty string.
 template <class Metric>
-std::string singular_set_problem(const Mesh_index& index, const std::vector<int>& singular)
+std::string singular_set_problem(const Mesh_index& index, const Metric& metric, const std::vector<int>& singular)
 {
   if(singular.empty())
     return "the singular set is empty";
   if constexpr(Energy_state<Metric>::develops_faces)
+  {
+    // The development is exact where it is flat off S: every interior cone must lie on a
+    // seam of the cut it is developed along.
+    const std::vector<char> seams = internal::development_seams(metric, index.number_of_edges());
+    std::vector<char> on_seam(index.number_of_vertices(), 0);
+    for(int e = 0; e < index.number_of_edges(); ++e)
+      if(seams[e])
+        on_seam[index.edges[e][0]] = on_seam[index.edges[e][1]] = 1;
     for(int v : singular)
-      if(!index.is_boundary_vertex[v])
+      if(!index.is_boundary_vertex[v] && !on_seam[v])
         return "interior cone " + std::to_string(v) +
-               ": a metric that flips its own triangulation measures the mesh's faces in its "
-               "development, which needs a cut at cones (use a metric on the mesh's triangulation)";
+               " is on no seam: a metric that flips its own triangulation measures the mesh's faces "
+               "in its development, which must be cut through every cone (give the metric the seams "
+               "as fixed edges, as ICM::parameterize does, or use a metric on the mesh's triangulation)";
+  }
   return "";
 }
 
@@ -381,11 +391,14 @@ template <class SparseSolver, class Metric, class Energy>
 class Singular_value_problem
 {
 public:
+  /// `target`: the curvature of the free vertices (zero, or a user cone's fixed angle
+  /// defect), per vertex; empty for zero.
   Singular_value_problem(Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const Mesh_index& index,
                          const Energy& energy, const std::vector<int>& singular,
-                         Curvature_space_report& report)
+                         Curvature_space_report& report, const Eigen::VectorXd& target)
     : dirichlet_(dirichlet), index_(index), state_(index), energy_(energy), singular_(singular),
-      report_(report)
+      report_(report),
+      target_(target.size() == index.number_of_vertices() ? target : Eigen::VectorXd::Zero(index.number_of_vertices()))
   {}
 
   /// Moves u_N until K(u)_N = 0 for the u_S of `u`, from the u_N given, and leaves the
@@ -406,7 +419,7 @@ public:
       Dynamic_laplacian<SparseSolver>& laplacian = dirichlet_.laplacian();
       Eigen::VectorXd residual(laplacian.size());
       for(int i = 0; i < laplacian.size(); ++i)
-        residual[i] = -state_.curvature()[laplacian.vertex(i)];
+        residual[i] = target_[laplacian.vertex(i)] - state_.curvature()[laplacian.vertex(i)];
       const double largest = residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0;
       if(largest <= options.tolerance)
       {
@@ -432,7 +445,7 @@ public:
         u[laplacian.vertex(i)] += du[i];
       ++report_.newton_iterations;
     }
-    const Newton_report newton = dirichlet_.solve(Eigen::VectorXd::Zero(u.size()), u, options);
+    const Newton_report newton = dirichlet_.solve(target_, u, options);
     report_.newton_iterations += newton.iterations;
     message_ = newton.message;
     return newton.converged && state_.update(dirichlet_.curvature_map(), u);
@@ -453,10 +466,11 @@ public:
       return false;
     }
     // A trial metric solved only to a tolerance (`trial_tolerance_factor`) is off the flat
-    // one by du_N = Delta_NN^{-1} (-k_N): E there is E - y . k_N to first order, so that the
-    // line search ranks trials by the flat metrics' values, not by their residuals.
+    // one by du_N = Delta_NN^{-1} (target_N - k_N): E there is E - y . (k_N - target_N) to
+    // first order, so that the line search ranks trials by the flat metrics' values, not by
+    // their residuals.
     for(int i = 0; i < laplacian.size(); ++i)
-      value_ -= y[i] * state_.curvature()[laplacian.vertex(i)];
+      value_ -= y[i] * (state_.curvature()[laplacian.vertex(i)] - target_[laplacian.vertex(i)]);
     Eigen::VectorXd full = gradient_;
     add_coupling(laplacian, y, full);
     reduced_.resize(singular_.size());
@@ -564,6 +578,7 @@ private:
   const Energy& energy_;
   const std::vector<int>& singular_;
   Curvature_space_report& report_;
+  const Eigen::VectorXd target_;
   static constexpr int max_chord_steps = 6;
   // Measured on the horse's energies (doc/energies.md): 1e-6 factorized 158 times for
   // log area, 1e-3 86 times, in as many steps.
@@ -587,11 +602,14 @@ inline double seconds_since(std::chrono::steady_clock::time_point start)
 /// u_S. `u` is the start (its u_S; u_N is solved for, warm-started from the u_N given) and
 /// receives the optimum, normalised so that mean_S(u - u0) = 0. Starting from the entropy
 /// optimum (`free_boundary_optimum`) is natural: every energy is measured against it.
+/// `target` is the curvature the free vertices keep (per vertex; empty: zero, flat), nonzero
+/// at cones whose angle the user fixed.
 template <class SparseSolver, class Metric, class Energy>
 Curvature_space_report minimize_energy_on_singular_values(
   Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const internal::Mesh_index& index,
   const Metric& metric, const Energy& energy, Eigen::VectorXd& u,
-  const Curvature_space_options& options = Curvature_space_options())
+  const Curvature_space_options& options = Curvature_space_options(),
+  const Eigen::VectorXd& target = Eigen::VectorXd())
 {
   const auto start = std::chrono::steady_clock::now();
   Curvature_space_report report;
@@ -604,14 +622,14 @@ Curvature_space_report minimize_energy_on_singular_values(
       is_singular[v] = laplacian.free_index(v) < 0;
   }
   const std::vector<int> singular = internal::singular_list(is_singular);
-  report.message = internal::singular_set_problem<Metric>(index, singular);
+  report.message = internal::singular_set_problem(index, metric, singular);
   if(!report.message.empty())
     return report;
   if(u.size() != nv)
     u = metric.u0;
 
   using Problem = internal::Singular_value_problem<SparseSolver, Metric, Energy>;
-  Problem problem(dirichlet, index, energy, singular, report);
+  Problem problem(dirichlet, index, energy, singular, report, target);
   // Frozen between refreshes (see `Curvature_space_options::frozen_steps`); thawed on return.
   const bool freezing = Problem::can_freeze && options.frozen_steps > 0;
   struct Thaw
@@ -866,7 +884,7 @@ Curvature_space_report minimize_energy_by_projected_gradient(
   constexpr bool has_value = has_energy_value<Energy, Metric>;
   const int nv = index.number_of_vertices();
   const std::vector<int> singular = internal::singular_list(is_singular);
-  report.message = internal::singular_set_problem<Metric>(index, singular);
+  report.message = internal::singular_set_problem(index, metric, singular);
   if(!report.message.empty())
     return report;
   double value = 0;

@@ -219,6 +219,10 @@ public:
       {base_lengths_[e[0]], base_lengths_[e[1]], base_lengths_[e[2]]}, g);
   }
 
+  /// Per edge, whether the caller fixed it (the seams): it never flips, and an energy's
+  /// development of the metric is cut along it (Energies.h).
+  const std::vector<char>& fixed_edges() const { return is_fixed_; }
+
   /// The current triangulation: the mesh's vertices and border, its interior edges flipped.
   const internal::Mesh_index& triangulation() const { return triangulation_; }
 

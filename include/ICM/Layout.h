@@ -74,19 +74,23 @@ struct Faces_around_vertices
 {
   std::vector<int> first, faces;
 
-  explicit Faces_around_vertices(const internal::Mesh_index& index) : first(index.number_of_vertices() + 1, 0)
+  explicit Faces_around_vertices(const internal::Mesh_index& index)
+    : Faces_around_vertices(index.faces, index.number_of_vertices())
+  {}
+
+  /// For faces given by their corners' vertex ids, below `vertices`.
+  Faces_around_vertices(const std::vector<std::array<int, 3>>& corners, int vertices) : first(vertices + 1, 0)
   {
-    const int nv = index.number_of_vertices();
-    for(const auto& f : index.faces)
+    for(const auto& f : corners)
       for(int v : f)
         ++first[v + 1];
-    for(int v = 0; v < nv; ++v)
+    for(int v = 0; v < vertices; ++v)
       first[v + 1] += first[v];
-    faces.resize(first[nv]);
+    faces.resize(first[vertices]);
     std::vector<int> fill(first.begin(), first.end() - 1);
-    for(int f = 0; f < index.number_of_faces(); ++f)
-      for(int v : index.faces[f])
-        faces[fill[v]++] = f;
+    for(std::size_t f = 0; f < corners.size(); ++f)
+      for(int v : corners[f])
+        faces[fill[v]++] = static_cast<int>(f);
   }
 };
 

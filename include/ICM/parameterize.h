@@ -5,7 +5,9 @@
 // several components) and writes one UV per corner (a halfedge map, as CGAL's `Seam_mesh`
 // examples use). Per connected component, the two levels of the pipeline stay apart:
 //   on the surface as given   index -> cones (Singular_vertices.h) -> entropy optimum with the
-//                             cones singular, in the metric's class (Optimal_metric.h)
+//                             cones singular, in the metric's class (Optimal_metric.h), or
+//                             the minimum of another energy over the same singular set
+//                             (Curvature_space_optimizer.h)
 //   on the surface cut open   cut graph and wedges (Cut_graph.h) -> layout of the surface's
 //                             flat metric, both sides of a seam one length (Layout.h) ->
 //                             checks: orientation, lengths, seams, border overlaps
@@ -18,7 +20,9 @@
 #include <ICM/Chart_packing.h>
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
+#include <ICM/Curvature_space_optimizer.h>
 #include <ICM/Cut_graph.h>
+#include <ICM/Energies.h>
 #include <ICM/Inverse_curvature_map.h>
 #include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Layout.h>
@@ -93,6 +97,9 @@ struct Surface_parameterization_options
   /// 1.149 / 4 (23), mech-holes-shark 0.079 / 1.014 / 1 -> 0.033 / 1.012 / 2 (4).
   double border_max_log_scale = 2.0;
   Newton_options newton;
+  /// The optimizer of an energy other than the entropy (`parameterize`'s `energy`), run from
+  /// the entropy optimum over the same singular set: the border and the cones.
+  Curvature_space_options energy;
   bool fall_back_to_circle_packing = true;
   /// A layout whose edge lengths differ from the metric's by more than this fails. The
   /// propagation across a long cut disk loses more digits on slivers than on a plain disk
@@ -117,6 +124,12 @@ struct Chart_report
   int seam_edges = 0, homology_generators = 0;
   std::string metric, fallback_reason;
   int newton_iterations = 0;
+  /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
+  /// at the result (NaN for an energy without a value), and why it stopped early (empty when
+  /// it converged).
+  int energy_iterations = 0;
+  double initial_energy = std::nan(""), final_energy = std::nan("");
+  std::string energy_message;
   double max_curvature_error = 0;      ///< max |k| over non-singular vertices
   int flipped_faces = 0;
   int moved_vertices = 0;              ///< see `Parameterization_report::moved_vertices`
@@ -167,10 +180,11 @@ Metric make_metric(const Mesh_index& index, const std::vector<char>& fixed_edges
 }
 
 /// The entropy optimum for the singular set S (u_S = u0_S, K_N = 0) in the class of `Metric`,
-/// with the lengths and angles at the optimum on the metric's triangulation: the mesh's, or
-/// (`has_triangulation`) the metric's own intrinsic one, whose seam edges are the mesh's.
-/// `prescribed` (curvature per vertex, NaN where none) are user cones with a fixed angle:
-/// they join the unknowns with their target curvature.
+/// then, for another energy, its minimum over the same S from there; with the lengths and
+/// angles at the result on the metric's triangulation: the mesh's, or (`has_triangulation`)
+/// the metric's own intrinsic one, whose seam edges are the mesh's. `prescribed` (curvature
+/// per vertex, NaN where none) are user cones with a fixed angle: they join the unknowns
+/// with their target curvature.
 template <class Metric, class Solver>
 struct Surface_optimum
 {
@@ -180,10 +194,12 @@ struct Surface_optimum
   std::vector<Triangle_angles> angles;
   Mesh_index triangulation; ///< only when `has_triangulation`
   Newton_report newton;
+  Curvature_space_report energy; ///< empty when the energy is the entropy
 
+  template <class Energy>
   Surface_optimum(const Mesh_index& index, const std::vector<char>& is_seam,
                   const std::vector<char>& is_singular, const std::vector<double>& prescribed,
-                  const Newton_options& options)
+                  const Surface_parameterization_options& options, const Energy& energy_policy)
   {
     const int nv = index.number_of_vertices();
     std::vector<char> is_free(nv);
@@ -204,7 +220,34 @@ struct Surface_optimum
     const Metric metric = make_metric<Metric>(index, is_seam);
     Inverse_curvature_map<Solver, Metric> solver(index, metric, is_free);
     u = metric.u0;
-    newton = solver.solve(target, u, options);
+    newton = solver.solve(target, u, options.newton);
+    // Another energy has something to choose when S has two vertices or more (the optimizer
+    // keeps the mean of u_S). It keeps its best metric when it stops early.
+    if constexpr(!std::is_same<Energy, Curvature_entropy>::value)
+    {
+      if(newton.converged && std::count(is_free.begin(), is_free.end(), 0) >= 2)
+      {
+        energy = minimize_energy_on_singular_values(solver, index, metric, energy_policy, u, options.energy, target);
+        if(energy.energy_history.empty())
+        {
+          newton.converged = false;
+          newton.message = std::string(energy_name<Energy>()) + " energy: " + energy.message;
+          return;
+        }
+        // The solver's state at the result, which the optimizer moved by a constant. That
+        // result is flat to the Newton tolerance; a step or two more take it to rounding, as
+        // the entropy's Newton ends, so that the cut layout closes up as well (sphere966,
+        // log area: seam sides 2.4e-9 apart at 5e-11 rad, 1e-13 after one more step).
+        const int before = newton.iterations + energy.newton_iterations;
+        Newton_options finish = options.newton;
+        finish.tolerance = 1e-3 * options.newton.tolerance;
+        finish.max_iterations = 3;
+        newton = solver.solve(target, u, finish);
+        newton.iterations += before;
+        newton.converged =
+          !newton.residual_history.empty() && newton.residual_history.back() <= options.newton.tolerance;
+      }
+    }
     // The solver holds the curvature, lengths and radii of its last accepted u.
     k = solver.curvature();
     lengths = solver.curvature_map().lengths();
@@ -300,12 +343,12 @@ inline std::vector<Seam_twin> seam_twins(const Mesh_index& index, const Cut_mesh
 
 /// The optimum in the class of `Metric` for the singular set and its layout on `cut`,
 /// checked: steps 5 and 7 of one component. Returns the failure reason, or empty.
-template <class Metric, class Solver>
+template <class Metric, class Solver, class Energy>
 std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_seam,
                                const std::vector<char>& is_singular, const std::vector<double>& prescribed,
                                const Cut_mesh& cut, const Surface_parameterization_options& options,
                                Surface_parameterization_report& report, Chart_report& chart,
-                               std::vector<Uv>& uv)
+                               std::vector<Uv>& uv, const Energy& energy)
 {
   using Clock = std::chrono::steady_clock;
   auto seconds_since = [](Clock::time_point t) {
@@ -313,9 +356,13 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
   };
   const int nv = index.number_of_vertices();
   Clock::time_point t = Clock::now();
-  Surface_optimum<Metric, Solver> optimum(index, is_seam, is_singular, prescribed, options.newton);
+  Surface_optimum<Metric, Solver> optimum(index, is_seam, is_singular, prescribed, options, energy);
   chart.metric = Metric::name;
   chart.newton_iterations = optimum.newton.iterations;
+  chart.energy_iterations = optimum.energy.iterations;
+  chart.initial_energy = optimum.energy.initial_energy;
+  chart.final_energy = optimum.energy.final_energy;
+  chart.energy_message = optimum.energy.message;
   report.seconds_optimum += seconds_since(t);
   if(!optimum.newton.converged)
     return optimum.newton.message;
@@ -359,15 +406,17 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
       uv[w] = intrinsic_uv[match[w]];
     if(check.flipped_faces == 0 && count_flipped_faces(cut.disk, uv) > 0)
     {
-      // A wedge may move when it is its vertex's only one (not on a seam), or with its twin
-      // across a seam through a flat vertex.
-      std::vector<int> wedges_of(nv, 0);
-      for(int v : cut.surface_vertex)
-        ++wedges_of[v];
+      // A wedge may move when its vertex is on no seam, or with its twin across a seam
+      // through a flat vertex. Not the one wedge of a cone where a seam ends: both sides of
+      // its seam edge start there, and moving it would give them different lengths.
+      std::vector<char> on_seam(nv, 0);
+      for(int e = 0; e < index.number_of_edges(); ++e)
+        if(cut.disk_edges[e][1] >= 0)
+          on_seam[index.edges[e][0]] = on_seam[index.edges[e][1]] = 1;
       const std::vector<Seam_twin> twins = seam_twins(index, cut, uv);
       std::vector<char> is_movable(cut.surface_vertex.size());
       for(std::size_t w = 0; w < is_movable.size(); ++w)
-        is_movable[w] = wedges_of[cut.surface_vertex[w]] == 1 || twins[w].wedge >= 0;
+        is_movable[w] = !on_seam[cut.surface_vertex[w]] || twins[w].wedge >= 0;
       chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv, is_movable, twins);
     }
     chart.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(cut.disk, uv));
@@ -392,12 +441,12 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
 /// `cut.disk`. `user_seams` (per edge; empty: none) are taken as the cut as given, their ends
 /// and branch points singular with a free angle, and no cone is added. Returns the failure
 /// reason, or empty.
-template <class Metric, class Solver>
+template <class Metric, class Solver, class Energy>
 std::string parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
                                    const std::vector<double>& prescribed, const std::vector<char>& user_seams,
                                    const Surface_parameterization_options& options,
                                    Surface_parameterization_report& report, Chart_report& chart,
-                                   Cut_mesh& cut, std::vector<Uv>& uv,
+                                   Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy,
                                    const Stage_progress& progress = Stage_progress())
 {
   using Clock = std::chrono::steady_clock;
@@ -534,14 +583,14 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   const Chart_report before_optimum = chart;
   std::string failure =
     optimum_and_layout<Metric, Solver>(index, graph.is_seam, is_singular, prescribed, cut, options,
-                                       report, chart, uv);
+                                       report, chart, uv, energy);
   if(!failure.empty() && !std::is_same<Metric, Circle_packing_metric>::value &&
      options.fall_back_to_circle_packing)
   {
     const std::string reason = std::string(Metric::name) + ": " + failure;
     chart = before_optimum;
     failure = optimum_and_layout<Circle_packing_metric, Solver>(index, graph.is_seam, is_singular, prescribed,
-                                                                cut, options, report, chart, uv);
+                                                                cut, options, report, chart, uv, energy);
     chart.fallback_reason = reason;
   }
   chart.raw_overlapping_border_edges = chart.overlapping_border_edges;
@@ -567,8 +616,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 
 /// \brief Parameterizes any triangle mesh: every connected component is cut into a disk
 /// through its cones (chosen automatically, or the user's), laid out with the minimum of the
-/// curvature entropy in the class of `Metric`, and the charts are packed side by side at
-/// their 3D scale.
+/// curvature entropy in the class of `Metric` (or of `Energy` over the same border and
+/// cones), and the charts are packed side by side at their 3D scale.
 ///
 /// \tparam TriangleMesh a model of `FaceGraph`
 /// \tparam HalfedgeUVMap a writable property map from `halfedge_descriptor` to a 2D point:
@@ -576,6 +625,11 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 ///         the corner across `next(h)`). It serves directly as the UV map of a
 ///         `CGAL::Seam_mesh` whose seams are `seam_edges`.
 /// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is `Default_metric`
+/// \tparam Energy a model of `Energy` (Energies.h, doc/energies.md); `CGAL::Default` is
+///         `Curvature_entropy`. Another energy is minimised over the conformal maps with the
+///         singular set the entropy's run chose (the border and the cones; a user cone's
+///         fixed angle stays fixed), from the entropy optimum, by
+///         `minimize_energy_on_singular_values` with `options.energy`
 /// \param mesh the triangle mesh; it is not modified
 /// \param uv_map receives one UV per corner (see `HalfedgeUVMap`)
 /// \param options cones, Newton, fallback and overlap options (doc/parameterizer.md)
@@ -586,16 +640,19 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
 ///        any of these edges is cut along exactly them (they must cut it into one disk through
 ///        every user cone), their ends and branch points become singular with a free angle
 ///        and no automatic cone is added; a component without any is cut as usual
+/// \param energy the energy's own settings (for example `Log_area_distortion`'s weighting)
 /// \returns the status, the reason of a failure and one `Chart_report` per component
 ///          (doc/report.md)
-template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class TriangleMesh,
-          class HalfedgeUVMap>
+template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class Energy_ = CGAL::Default,
+          class TriangleMesh, class HalfedgeUVMap>
 Surface_parameterization_report parameterize(
   const TriangleMesh& mesh, HalfedgeUVMap uv_map,
   const Surface_parameterization_options& options = Surface_parameterization_options(),
   const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones = {},
   std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr,
-  const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams = {})
+  const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams = {},
+  const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
+    typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
@@ -706,7 +763,8 @@ Surface_parameterization_report parameterize(
         component_seams.clear();
     }
     const std::string failure = internal::parameterize_component<Metric, Solver>(
-      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c], progress);
+      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c], energy,
+      progress);
     report.charts.push_back(chart);
     if(!failure.empty())
       return finish(failure.find("flipped") != std::string::npos ||
