@@ -472,6 +472,17 @@ TEST(Surfaces, LogAreaEnergyLowersAreaDistortionOnEveryTopology)
     }
     EXPECT_LT(log_area.measures.log_area_distortion, entropy.measures.log_area_distortion) << name;
   }
+  // Several components: each is optimised on its own (a sphere with its cones, a disk on its
+  // border).
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  CGAL::copy_face_graph(read(icm_test::data_path("nefertiti.off")), mesh);
+  const Result both = run<ICM::Log_area_distortion>(mesh, "sphere + nefertiti, log-area");
+  ASSERT_EQ(both.report.charts.size(), 2u);
+  for(const ICM::Chart_report& c : both.report.charts)
+  {
+    EXPECT_GT(c.energy_iterations, 0);
+    EXPECT_LT(c.final_energy, c.initial_energy);
+  }
 }
 
 TEST(Surfaces, EnergyOfTheCutDevelopmentIsTheLayoutsOwn)
