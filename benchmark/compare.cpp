@@ -240,6 +240,9 @@ std::vector<Seam_method> make_seam_registry() {
 
 // Rows of a surface that is not a disk, besides the seam-mesh CGAL methods:
 //   icm                       ICM::parameterize(), the whole pipeline (cones, cut, optimum, layout)
+//   icm_u_square, icm_area,   the same with that energy minimised over the entropy's cones and
+//   icm_angle, icm_log_area   border (ICM::parameterize<..., Energy>); on a disk these names
+//                             are the parameterizer's free-boundary rows instead
 //   icm_keep_overlaps         the same with remove_overlaps = false: the raw cut (shown, and
 //                             given to CGAL's methods, when overlap removal made pieces)
 //   icm_free_boundary_opened  icm_free_boundary on the closed mesh opened at its first vertex
@@ -286,7 +289,9 @@ const char* usage_text =
     "  --time-limit S     per-run limit in seconds; slower runs are killed and shown as\n"
     "                     'timeout' (default 600)\n"
     "  --methods a,b      run only these methods (default: all); besides the registry's:\n"
-    "                     icm, icm_keep_overlaps, icm_free_boundary_opened\n"
+    "                     icm, icm_keep_overlaps, icm_free_boundary_opened; on a surface\n"
+    "                     that is not a disk, icm_u_square, icm_area, icm_angle and\n"
+    "                     icm_log_area run ICM::parameterize with that energy\n"
     "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
     "  --open             open each closed mesh by removing the faces around its first\n"
     "                     vertex: a nearly closed disk, like a scan with one small hole\n"
@@ -923,8 +928,11 @@ std::string disk_check(Mesh& mesh) {
 // Surfaces that are not disks: ICM's one call, and CGAL's methods on ICM's cut
 // ------------------------------------------------------------------------------------------
 
-// ICM::parameterize() on its own copy of the mesh, timed as a whole, measured per corner. The
-// report's stage times and counts go back as extras, the seam edges as edge indices.
+// ICM::parameterize() with `Energy` on its own copy of the mesh, timed as a whole, measured per
+// corner. The report's stage times and counts go back as extras, the seam edges as edge
+// indices; for an energy other than the entropy also its steps (summed over the components)
+// and E at the entropy optimum and at the result (the components' means weighted by faces).
+template <class Energy = CGAL::Default>
 Job icm_job(const Mesh& input, bool remove_overlaps) {
   return [&input, remove_overlaps](Child_result& r, bool measure) {
     Mesh mesh = input;
@@ -935,7 +943,7 @@ Job icm_job(const Mesh& input, bool remove_overlaps) {
     std::vector<edge_descriptor> seams;
     const auto t0 = std::chrono::steady_clock::now();
     const ICM::Surface_parameterization_report report =
-        ICM::parameterize(mesh, uvmap, options, {}, &seams);
+        ICM::parameterize<CGAL::Default, CGAL::Default, Energy>(mesh, uvmap, options, {}, &seams);
     const auto t1 = std::chrono::steady_clock::now();
     r.peak_rss_mb = peak_rss_mb();
     r.code = static_cast<int>(report.status);
@@ -967,6 +975,20 @@ Job icm_job(const Mesh& input, bool remove_overlaps) {
                {"seconds_cut", report.seconds_cut},
                {"seconds_layout", report.seconds_layout},
                {"seconds_total", report.seconds_total}};
+    if constexpr (!std::is_same<Energy, CGAL::Default>::value) {
+      double faces = 0, steps = 0, initial = 0, final_energy = 0;
+      for (const ICM::Chart_report& c : report.charts) faces += c.faces;
+      for (const ICM::Chart_report& c : report.charts) {
+        steps += c.energy_iterations;
+        if (std::isfinite(c.initial_energy)) {
+          initial += c.faces / faces * c.initial_energy;
+          final_energy += c.faces / faces * c.final_energy;
+        }
+      }
+      r.extra.push_back({"energy_iterations", steps});
+      r.extra.push_back({"initial_energy", initial});
+      r.extra.push_back({"final_energy", final_energy});
+    }
     // Only a successful call writes UVs (a failing component returns before the layout is
     // written), so nothing is measured otherwise.
     if (report.status == SMP::OK) {
@@ -1233,9 +1255,11 @@ bool write_panels(const std::string& mesh_path, const Options& opt,
 // ICM's report in a row: the named numbers as JSON keys, the counts and stage times in the
 // Markdown status.
 void add_icm_report(Row& row, const Child_result& result) {
+  auto is_measure = [](const std::string& key) {
+    return key.rfind("seconds", 0) == 0 || key == "initial_energy" || key == "final_energy";
+  };
   for (const auto& [key, value] : result.extra)
-    row.json_extra.emplace_back(key, key.rfind("seconds", 0) == 0 ? json_num(value)
-                                                                   : json_count(value));
+    row.json_extra.emplace_back(key, is_measure(key) ? json_num(value) : json_count(value));
   if (result.extra.empty() || row.status.rfind("ok", 0) != 0) return;
   auto x = [&](const char* key) { return extra_value(result, key); };
   char buf[320];
@@ -1248,6 +1272,20 @@ void add_icm_report(Row& row, const Child_result& result) {
   row.note = buf;
   if (x("border_crossings") > 0)
     row.note += "; " + count_text(x("border_crossings")) + " border crossings";
+  if (std::isfinite(x("energy_iterations"))) {
+    std::snprintf(buf, sizeof buf, "; %.0f energy steps, E %.4g -> %.4g", x("energy_iterations"),
+                  x("initial_energy"), x("final_energy"));
+    row.note += buf;
+  }
+}
+
+// The job of a surface row with an energy (icm_u_square, ...), or none for another name.
+Job icm_energy_job(const Mesh& mesh, const std::string& name) {
+  if (name == "icm_u_square") return icm_job<ICM::U_square>(mesh, true);
+  if (name == "icm_area") return icm_job<ICM::Area_distortion>(mesh, true);
+  if (name == "icm_angle") return icm_job<ICM::Angle_distortion>(mesh, true);
+  if (name == "icm_log_area") return icm_job<ICM::Log_area_distortion>(mesh, true);
+  return {};
 }
 
 // ICM's report on a disk: its numbers as JSON keys; the optimum's time and, for an energy
@@ -1402,6 +1440,12 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
         row.json_extra.emplace_back("cut_seam_edges", cut.size());
         progress_done(row);
       }
+    } else if (Job job = icm_energy_job(mesh, name)) {
+      progress(name);
+      Child_result result;
+      row = run_job(job, name, opt, base, &result);
+      add_icm_report(row, result);
+      progress_done(row);
     } else if (name == "icm_circle_domain") {
       const auto method = std::find_if(registry.begin(), registry.end(),
                                        [&](const Method& r) { return r.name == name; });
