@@ -976,18 +976,10 @@ Job icm_job(const Mesh& input, bool remove_overlaps) {
                {"seconds_layout", report.seconds_layout},
                {"seconds_total", report.seconds_total}};
     if constexpr (!std::is_same<Energy, CGAL::Default>::value) {
-      double faces = 0, steps = 0, initial = 0, final_energy = 0;
-      for (const ICM::Chart_report& c : report.charts) faces += c.faces;
-      for (const ICM::Chart_report& c : report.charts) {
-        steps += c.energy_iterations;
-        if (std::isfinite(c.initial_energy)) {
-          initial += c.faces / faces * c.initial_energy;
-          final_energy += c.faces / faces * c.final_energy;
-        }
-      }
-      r.extra.push_back({"energy_iterations", steps});
-      r.extra.push_back({"initial_energy", initial});
-      r.extra.push_back({"final_energy", final_energy});
+      const ICM::Energy_summary energy = ICM::energy_summary(report);
+      r.extra.push_back({"energy_iterations", static_cast<double>(energy.iterations)});
+      r.extra.push_back({"initial_energy", energy.initial_energy});
+      r.extra.push_back({"final_energy", energy.final_energy});
     }
     // Only a successful call writes UVs (a failing component returns before the layout is
     // written), so nothing is measured otherwise.

@@ -431,8 +431,8 @@ struct Run_figures
   int degenerate_faces = 0, border_iterations = 0;
   double circle_deviation = 0;
 
-  /// `ICM::parameterize`'s run of `energy_` with `seam_edges` cut. With several components
-  /// the energies are their means weighted by faces, the steps their sum.
+  /// `ICM::parameterize`'s run of `energy_` with `seam_edges` cut (the energy over the
+  /// components: `ICM::energy_summary`).
   Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_, const std::string& energy_)
     : charts(0), components(static_cast<int>(report.charts.size())), overlaps(0), raw_overlaps(0),
       seam_edges(seam_edges_), seconds_cones(report.seconds_cones), seconds_optimum(report.seconds_optimum),
@@ -440,25 +440,16 @@ struct Run_figures
       seconds_parameterize(report.seconds_total), energy(energy_),
       optimized_energy(energy_ != ICM::Curvature_entropy::name)
   {
-    int faces = 0;
-    for(const ICM::Chart_report& c : report.charts)
-      faces += c.faces;
+    if(optimized_energy)
+    {
+      const ICM::Energy_summary summary = ICM::energy_summary(report);
+      energy_iterations = summary.iterations;
+      initial_energy = summary.initial_energy;
+      final_energy = summary.final_energy;
+      energy_message = summary.message;
+    }
     for(const ICM::Chart_report& c : report.charts)
     {
-      if(optimized_energy)
-      {
-        // A chart whose singular set left nothing to choose kept the entropy's map: its E
-        // was not measured (NaN), and it adds nothing.
-        const double share = static_cast<double>(c.faces) / faces;
-        energy_iterations += c.energy_iterations;
-        if(std::isfinite(c.initial_energy))
-        {
-          initial_energy += share * c.initial_energy;
-          final_energy += share * c.final_energy;
-        }
-        if(energy_message.empty())
-          energy_message = c.energy_message;
-      }
       cones += static_cast<int>(c.cones.size());
       genus += c.genus;
       loops += c.boundary_loops;

@@ -153,13 +153,10 @@ std::string singular_set_problem(const Mesh_index& index, const Metric& metric, 
   {
     // The development is exact where it is flat off S: every interior cone must lie on a
     // seam of the cut it is developed along.
-    const std::vector<char> seams = internal::development_seams(metric, index.number_of_edges());
-    std::vector<char> on_seam(index.number_of_vertices(), 0);
-    for(int e = 0; e < index.number_of_edges(); ++e)
-      if(seams[e])
-        on_seam[index.edges[e][0]] = on_seam[index.edges[e][1]] = 1;
+    const std::vector<int> seam_degree =
+      cutting::seam_degrees(index, development_seams(metric, index.number_of_edges()));
     for(int v : singular)
-      if(!index.is_boundary_vertex[v] && !on_seam[v])
+      if(!index.is_boundary_vertex[v] && seam_degree[v] == 0)
         return "interior cone " + std::to_string(v) +
                " is on no seam: a metric that flips its own triangulation measures the mesh's faces "
                "in its development, which must be cut through every cone (give the metric the seams "

@@ -409,16 +409,13 @@ private:
   {
     seams_ = seams;
     const int nv = mesh_.number_of_vertices();
-    on_seam_.assign(nv, 0);
-    for(int e = 0; e < mesh_.number_of_edges(); ++e)
-      if(seams_[e])
-        on_seam_[mesh_.edges[e][0]] = on_seam_[mesh_.edges[e][1]] = 1;
+    seam_degree_ = internal::cutting::seam_degrees(mesh_, seams_);
     mesh_wedges_ = mesh_.faces;
     number_of_wedges_ = nv;
     std::vector<std::pair<long long, int>> corners; // (key, 3 f + c)
     for(int f = 0; f < mesh_.number_of_faces(); ++f)
       for(int c = 0; c < 3; ++c)
-        if(on_seam_[mesh_.faces[f][c]])
+        if(seam_degree_[mesh_.faces[f][c]] > 0)
           corners.push_back({wedge_key(mesh_, seams_, f, c), 3 * f + c});
     std::sort(corners.begin(), corners.end());
     std::vector<char> has_own_id(nv, 0);
@@ -444,7 +441,7 @@ private:
       return;
     for(int f = 0; f < t.number_of_faces(); ++f)
       for(int c = 0; c < 3; ++c)
-        if(on_seam_[t.faces[f][c]])
+        if(seam_degree_[t.faces[f][c]] > 0)
         {
           const long long key = wedge_key(t, seams_, f, c);
           const auto it = std::lower_bound(wedge_of_key_.begin(), wedge_of_key_.end(), std::make_pair(key, -1));
@@ -622,9 +619,10 @@ private:
   std::vector<std::array<double, 3>> angle_;  // per mesh face corner (metric faces only)
   double area_scale_ = 1;
   std::vector<internal::Point2> z_;           // developed wedges
-  // The cut of the development: the seams, the vertices on them, the wedges of the mesh's
+  // The cut of the development: the seams, each vertex's seam degree, the wedges of the mesh's
   // and of the triangulation's corners (vertex ids off the seams), and the wedge of each key.
-  std::vector<char> seams_, on_seam_;
+  std::vector<char> seams_;
+  std::vector<int> seam_degree_;
   std::vector<std::array<int, 3>> mesh_wedges_, wedges_;
   std::vector<std::pair<long long, int>> wedge_of_key_;
   int number_of_wedges_ = 0;

@@ -154,6 +154,37 @@ struct Surface_parameterization_report
          seconds_total = 0;
 };
 
+/// An energy's figures over every component of a report: the optimizer's steps summed, E at
+/// the entropy optimum and at the result as the components' means weighted by their faces (a
+/// component that optimised nothing, whose E is NaN, adds nothing), and the first reason an
+/// optimizer stopped early.
+struct Energy_summary
+{
+  int iterations = 0;
+  double initial_energy = 0, final_energy = 0;
+  std::string message;
+};
+
+inline Energy_summary energy_summary(const Surface_parameterization_report& report)
+{
+  Energy_summary summary;
+  double faces = 0;
+  for(const Chart_report& c : report.charts)
+    faces += c.faces;
+  for(const Chart_report& c : report.charts)
+  {
+    summary.iterations += c.energy_iterations;
+    if(std::isfinite(c.initial_energy))
+    {
+      summary.initial_energy += c.faces / faces * c.initial_energy;
+      summary.final_energy += c.faces / faces * c.final_energy;
+    }
+    if(summary.message.empty())
+      summary.message = c.energy_message;
+  }
+  return summary;
+}
+
 namespace internal {
 
 /// The progress of one component: `start` of the whole done before it, `span` its share.
@@ -409,14 +440,11 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
       // A wedge may move when its vertex is on no seam, or with its twin across a seam
       // through a flat vertex. Not the one wedge of a cone where a seam ends: both sides of
       // its seam edge start there, and moving it would give them different lengths.
-      std::vector<char> on_seam(nv, 0);
-      for(int e = 0; e < index.number_of_edges(); ++e)
-        if(cut.disk_edges[e][1] >= 0)
-          on_seam[index.edges[e][0]] = on_seam[index.edges[e][1]] = 1;
+      const std::vector<int> seam_degree = cutting::seam_degrees(index, is_seam);
       const std::vector<Seam_twin> twins = seam_twins(index, cut, uv);
       std::vector<char> is_movable(cut.surface_vertex.size());
       for(std::size_t w = 0; w < is_movable.size(); ++w)
-        is_movable[w] = !on_seam[cut.surface_vertex[w]] || twins[w].wedge >= 0;
+        is_movable[w] = seam_degree[cut.surface_vertex[w]] == 0 || twins[w].wedge >= 0;
       chart.moved_vertices = unflip_by_moving_vertices(cut.disk, uv, is_movable, twins);
     }
     chart.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(cut.disk, uv));
