@@ -264,6 +264,34 @@ TEST(Unflip, MovesAVertexBackIntoItsRing)
   EXPECT_GE(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   EXPECT_TRUE(std::equal(ring.begin(), ring.end(), uv.begin() + 1)); // only the centre moved
+  // To where the star is most conformal: the ring is the mesh's own, so the centre.
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
+}
+
+TEST(Unflip, KeepsTheStarAwayFromSlivers)
+{
+  // An obtuse face (0, 1, 2) whose far corner 0 was drawn just across its long edge, as a
+  // mesh face the intrinsic triangulation does not have comes out of a layout. The star of
+  // 0 is a square fan; its most conformal position is the apex of the square, far from the
+  // long edge, and the repaired faces are not slivers.
+  Mesh_index index;
+  index.points = {{0, 0.2, 0}, {-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
+  std::vector<ICM::Uv> uv = {{0, -0.01}, {-1, 0}, {1, 0}, {1, 1}, {-1, 1}};
+  index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 1);
+  std::vector<char> movable(index.number_of_vertices(), 0);
+  movable[0] = 1;
+  EXPECT_EQ(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  // The 3D star is the UV ring itself, so its most conformal position is (0, 0.2), where
+  // vertex 0 is in 3D. The doubled areas at (x, y) are 2y, 1 - x, 2 - 2y, 1 + x: at most
+  // 1 together, at (0, 0.5); going from there towards (0, 0.2) each keeps at least half of
+  // that, so 2y = 0.5 stops it at (0, 0.25) (the old unflipping stopped at twice the
+  // distance needed to unflip: y = 0.01, a sliver).
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.25, 1e-12);
 }
 
 } // namespace
