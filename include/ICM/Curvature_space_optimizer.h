@@ -420,7 +420,8 @@ public:
       const double largest = residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0;
       if(largest <= options.tolerance)
       {
-        state_.measure_faces();
+        if constexpr(reads_faces<Energy>)
+          state_.measure_faces();
         return true;
       }
       if(step == max_chord_steps || !(largest < 0.5 * last))
@@ -445,7 +446,7 @@ public:
     const Newton_report newton = dirichlet_.solve(target_, u, options);
     report_.newton_iterations += newton.iterations;
     message_ = newton.message;
-    return newton.converged && state_.update(dirichlet_.curvature_map(), u);
+    return newton.converged && state_.update(dirichlet_.curvature_map(), u, reads_faces<Energy>);
   }
 
   /// Measures E, grad_u E and the reduced gradient at the metric `solve_interior` reached.

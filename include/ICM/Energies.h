@@ -18,6 +18,11 @@
 //                                 derivatives alone.
 //   e.gradient_k(state, h)        optional: grad_k E = Delta(u)^{-1} grad_u E directly (up to
 //                                 a constant), as the entropy gives u - u0 without a solve.
+//   Energy::reads_faces           optional `static constexpr bool`, false for an energy of u
+//                                 and the metric's lengths and weights alone (the entropy,
+//                                 u-square): the optimizers then never measure the mesh's
+//                                 faces (for the default metric a development per solve),
+//                                 and its areas and angles in the state are not current.
 //
 // Every energy must be invariant under the global scale u -> u + c (the optimizers fix the
 // scale, which does not change the parameterization): the state's areas are normalised so
@@ -668,6 +673,13 @@ struct Has_hessian_diagonal<Energy, State,
 {};
 
 template <class Energy, class = void>
+struct Reads_faces : std::true_type
+{};
+template <class Energy>
+struct Reads_faces<Energy, std::void_t<decltype(Energy::reads_faces)>> : std::bool_constant<Energy::reads_faces>
+{};
+
+template <class Energy, class = void>
 struct Has_energy_name : std::false_type
 {};
 template <class Energy>
@@ -698,6 +710,11 @@ constexpr bool has_curvature_gradient = internal::Has_curvature_gradient<Energy,
 template <class Energy, class Metric>
 constexpr bool has_hessian_diagonal = internal::Has_hessian_diagonal<Energy, Energy_state<Metric>>::value;
 
+/// Whether `Energy` reads the mesh's faces of the state (`Energy::reads_faces`, true unless
+/// it says otherwise).
+template <class Energy>
+constexpr bool reads_faces = internal::Reads_faces<Energy>::value;
+
 /// E at the state, or NaN for an energy without a value.
 template <class Energy, class Metric>
 double energy_value(const Energy& energy, const Energy_state<Metric>& state)
@@ -715,7 +732,10 @@ void energy_gradient(const Energy& energy, const Energy_state<Metric>& state, Ei
 {
   partials.reset(static_cast<int>(state.u().size()), state.number_of_faces());
   energy.gradient(state, partials);
-  state.gradient_u(partials, gradient);
+  if constexpr(reads_faces<Energy>)
+    state.gradient_u(partials, gradient);
+  else
+    gradient = partials.u; // no face partials to chain through the metric
 }
 
 template <class Energy, class Metric>
@@ -736,6 +756,7 @@ Eigen::VectorXd energy_gradient(const Energy& energy, const Energy_state<Metric>
 struct Curvature_entropy
 {
   static constexpr const char* name = "entropy";
+  static constexpr bool reads_faces = false;
 
   template <class Metric>
   void gradient(const Energy_state<Metric>& state, Energy_gradient& partials) const
@@ -764,6 +785,7 @@ struct Curvature_entropy
 struct U_square
 {
   static constexpr const char* name = "u-square";
+  static constexpr bool reads_faces = false;
 
   template <class Metric>
   double value(const Energy_state<Metric>& state) const
