@@ -273,12 +273,11 @@ public:
   {
     if constexpr(develops_faces)
     {
-      // Computed when asked: three arctangents per face are a sixth of an update on the
-      // horse, and only the angle energies read them.
-      const std::array<int, 3>& v = mesh_wedges_[f];
-      const internal::Point2 a = internal::minus(z_[v[(c + 1) % 3]], z_[v[c]]);
-      const internal::Point2 b = internal::minus(z_[v[(c + 2) % 3]], z_[v[c]]);
-      return std::atan2(internal::cross(a, b), internal::dot(a, b));
+      // Measured when first asked after a development: three arctangents per face are a
+      // sixth of an update on the horse, and only the angle energies read them.
+      if(!developed_angles_current_)
+        measure_developed_angles();
+      return developed_angle_[f][c];
     }
     else
       return angle_[f][c];
@@ -517,6 +516,23 @@ private:
       total += area_[f];
     }
     area_scale_ = mesh_total_area_ / total;
+    developed_angles_current_ = false;
+  }
+
+  void measure_developed_angles() const
+  {
+    developed_angle_.resize(mesh_.number_of_faces());
+    for(int f = 0; f < mesh_.number_of_faces(); ++f)
+    {
+      const std::array<int, 3>& v = mesh_wedges_[f];
+      for(int c = 0; c < 3; ++c)
+      {
+        const internal::Point2 a = internal::minus(z_[v[(c + 1) % 3]], z_[v[c]]);
+        const internal::Point2 b = internal::minus(z_[v[(c + 2) % 3]], z_[v[c]]);
+        developed_angle_[f][c] = std::atan2(internal::cross(a, b), internal::dot(a, b));
+      }
+    }
+    developed_angles_current_ = true;
   }
 
   void place(const internal::Mesh_index& t, int f, int c)
@@ -624,6 +640,8 @@ private:
   std::vector<std::array<double, 3>> angle_;  // per mesh face corner (metric faces only)
   double area_scale_ = 1;
   std::vector<internal::Point2> z_;           // developed wedges
+  mutable std::vector<std::array<double, 3>> developed_angle_; // per mesh face corner, when asked
+  mutable bool developed_angles_current_ = false;
   // The cut of the development: the seams, each vertex's seam degree, the wedges of the mesh's
   // and of the triangulation's corners (vertex ids off the seams), and the wedge of each key.
   std::vector<char> seams_;
