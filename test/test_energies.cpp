@@ -381,6 +381,65 @@ TEST(EnergyOptimizer, TheoremThreePointTwoHoldsAtEveryEnergysOptimum)
   check(ICM::Circle_packing_metric(index));
 }
 
+TEST(EnergyOptimizer, AngleJacobianIsExactForVertexScaling)
+{
+  // The Gauss-Newton preconditioner's d angle / d u: exact for vertex scaling on the mesh's
+  // faces, checked against central differences along a random direction.
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Vertex_scaling_metric metric(index);
+  const Eigen::VectorXd u = icm_test::random_perturbation(entropy_optimum(index, metric), 1e-2, 5);
+  const Eigen::VectorXd du = icm_test::random_perturbation(Eigen::VectorXd::Zero(u.size()), 1.0, 7);
+  const double h = 1e-6;
+  ICM::Curvature_map<ICM::Vertex_scaling_metric> curvature(index, metric);
+  ICM::Energy_state<ICM::Vertex_scaling_metric> at(index), plus(index), minus(index);
+  ASSERT_TRUE(at.update(curvature, u));
+  ASSERT_TRUE(plus.update(curvature, u + h * du));
+  ASSERT_TRUE(minus.update(curvature, u - h * du));
+  double error = 0, largest = 0;
+  for(int f = 0; f < index.number_of_faces(); ++f)
+  {
+    const std::array<std::array<double, 3>, 3> j = ICM::internal::angle_jacobian(at, f);
+    const std::array<int, 3>& v = index.faces[f];
+    for(int c = 0; c < 3; ++c)
+    {
+      const double predicted = j[c][0] * du[v[0]] + j[c][1] * du[v[1]] + j[c][2] * du[v[2]];
+      const double measured = (plus.angle(f, c) - minus.angle(f, c)) / (2 * h);
+      error = std::max(error, std::abs(predicted - measured));
+      largest = std::max(largest, std::abs(measured));
+    }
+  }
+  EXPECT_GT(largest, 0.1);
+  EXPECT_LT(error, 1e-6 * largest);
+}
+
+TEST(EnergyOptimizer, GaussNewtonPreconditionerReachesTheSameOptimumInFewerSteps)
+{
+  // The default preconditioner of the angle energy against the identity, tight tolerance,
+  // the default metric (whose mesh faces are measured in its development).
+  for(const char* name : {"nefertiti.off", "three_peaks.off"})
+  {
+    const Mesh_index index = index_file(name);
+    const std::vector<char> S = ICM::boundary_singular_set(index);
+    const ICM::Intrinsic_delaunay_metric metric(index);
+    const Eigen::VectorXd start = entropy_optimum(index, metric);
+    ICM::Curvature_space_options identity = tight_options(), gauss_newton = tight_options();
+    identity.preconditioner = ICM::Lbfgs_preconditioner::Identity;
+    gauss_newton.preconditioner = ICM::Lbfgs_preconditioner::Gauss_newton;
+    Eigen::VectorXd u_identity = start, u_gauss_newton = start;
+    const ICM::Curvature_space_report a =
+      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Angle_distortion(), u_identity, identity);
+    const ICM::Curvature_space_report b =
+      ICM::minimize_energy_on_singular_values(index, metric, S, ICM::Angle_distortion(), u_gauss_newton, gauss_newton);
+    ASSERT_TRUE(a.converged) << name << ": " << a.message;
+    ASSERT_TRUE(b.converged) << name << ": " << b.message;
+    EXPECT_LT((u_identity - u_gauss_newton).cwiseAbs().maxCoeff(), 1e-5) << name;
+    EXPECT_NEAR(a.final_energy, b.final_energy, 1e-8 * a.final_energy) << name;
+    EXPECT_LT(b.iterations, a.iterations) << name;
+    std::cout << name << ": angle energy, identity " << a.iterations << " steps, Gauss-Newton " << b.iterations
+              << " steps, |u difference| " << (u_identity - u_gauss_newton).cwiseAbs().maxCoeff() << "\n";
+  }
+}
+
 TEST(EnergyOptimizer, InteriorConesAreSingularVerticesLikeTheBorder)
 {
   // Three interior cones of Algorithm 3 join the border in S; the optimum is flat elsewhere

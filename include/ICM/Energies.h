@@ -18,6 +18,10 @@
 //                                 derivatives alone.
 //   e.gradient_k(state, h)        optional: grad_k E = Delta(u)^{-1} grad_u E directly (up to
 //                                 a constant), as the entropy gives u - u0 without a solve.
+//   e.gauss_newton(state, h)      optional: adds the Gauss-Newton Hessian of E with respect
+//                                 to u (per vertex of the state's mesh) as entries of its
+//                                 lower triangle; the singular-values optimizer's default
+//                                 preconditioner reduces it to u_S (Curvature_space_optimizer.h).
 //   Energy::reads_faces           optional `static constexpr bool`, false for an energy of u
 //                                 and the metric's lengths and weights alone (the entropy,
 //                                 u-square): the optimizers then never measure the mesh's
@@ -61,6 +65,7 @@
 #include <ICM/internal/Triangle_geometry.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <array>
@@ -690,6 +695,16 @@ struct Has_hessian_diagonal<Energy, State,
   : std::true_type
 {};
 
+template <class Energy, class State, class = void>
+struct Has_gauss_newton : std::false_type
+{};
+template <class Energy, class State>
+struct Has_gauss_newton<Energy, State,
+                        std::void_t<decltype(std::declval<const Energy&>().gauss_newton(
+                          std::declval<const State&>(), std::declval<std::vector<Eigen::Triplet<double, int>>&>()))>>
+  : std::true_type
+{};
+
 template <class Energy, class = void>
 struct Reads_faces : std::true_type
 {};
@@ -727,6 +742,11 @@ constexpr bool has_curvature_gradient = internal::Has_curvature_gradient<Energy,
 /// the singular-values optimizer turns into its preconditioner.
 template <class Energy, class Metric>
 constexpr bool has_hessian_diagonal = internal::Has_hessian_diagonal<Energy, Energy_state<Metric>>::value;
+
+/// Whether `Energy` gives its Gauss-Newton Hessian in u (`gauss_newton`), which the
+/// singular-values optimizer turns into its default preconditioner.
+template <class Energy, class Metric>
+constexpr bool has_gauss_newton = internal::Has_gauss_newton<Energy, Energy_state<Metric>>::value;
 
 /// Whether `Energy` reads the mesh's faces of the state (`Energy::reads_faces`, true unless
 /// it says otherwise).
@@ -879,6 +899,33 @@ struct Area_distortion
 
 /// The ABF energy of Sec. III-D against the mesh's own angles: the mean over corners of
 /// (theta - theta_mesh)^2 (radians^2, the `angle_distortion` of doc/distortion.md).
+namespace internal {
+
+/// d angle(f, a) / d u_b of mesh face f in the vertex-scaling form, from the face's angles at
+/// the state: 1/2 cot of the third angle off the diagonal, rows summing to zero (the global
+/// scale moves no angle). Exact for vertex scaling on the mesh's faces; for the other
+/// metrics, and the faces of a development, the nearby conformal change a preconditioner needs.
+template <class Metric>
+std::array<std::array<double, 3>, 3> angle_jacobian(const Energy_state<Metric>& state, int f)
+{
+  // A cotangent beyond this (an angle under 1e-3 rad) is a sliver's, whose angles a
+  // conformal change hardly moves; capping it keeps the Hessian's scale that of the mesh.
+  constexpr double largest_cotangent = 1e3;
+  std::array<double, 3> cot;
+  for(int c = 0; c < 3; ++c)
+  {
+    const double theta = std::abs(state.angle(f, c));
+    cot[c] = std::clamp(std::cos(theta) / std::sin(theta), -largest_cotangent, largest_cotangent);
+  }
+  std::array<std::array<double, 3>, 3> j;
+  for(int a = 0; a < 3; ++a)
+    for(int b = 0; b < 3; ++b)
+      j[a][b] = a == b ? -0.5 * (cot[(a + 1) % 3] + cot[(a + 2) % 3]) : 0.5 * cot[3 - a - b];
+  return j;
+}
+
+} // namespace internal
+
 struct Angle_distortion
 {
   static constexpr const char* name = "angle";
@@ -903,6 +950,23 @@ struct Angle_distortion
     for(int f = 0; f < state.number_of_faces(); ++f)
       for(int c = 0; c < 3; ++c)
         partials.angle[f][c] += 2.0 / n * (state.angle(f, c) - state.mesh_angle(f, c));
+  }
+
+  /// (2 / 3F) sum_f J_f^T J_f, J_f = `angle_jacobian`: the angles' residuals are small near
+  /// the optimum (the entropy's is already close to it), so Gauss-Newton is nearly the Hessian.
+  template <class Metric>
+  void gauss_newton(const Energy_state<Metric>& state, std::vector<Eigen::Triplet<double, int>>& h) const
+  {
+    const double scale = 2.0 / (3.0 * state.number_of_faces());
+    for(int f = 0; f < state.number_of_faces(); ++f)
+    {
+      const std::array<std::array<double, 3>, 3> j = internal::angle_jacobian(state, f);
+      const std::array<int, 3>& v = state.mesh().faces[f];
+      for(int a = 0; a < 3; ++a)
+        for(int b = 0; b < 3; ++b)
+          if(v[a] >= v[b])
+            h.emplace_back(v[a], v[b], scale * (j[0][a] * j[0][b] + j[1][a] * j[1][b] + j[2][a] * j[2][b]));
+    }
   }
 };
 
