@@ -294,4 +294,30 @@ TEST(Unflip, KeepsTheStarAwayFromSlivers)
   EXPECT_NEAR(uv[0][1], 0.25, 1e-12);
 }
 
+TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
+{
+  // A border vertex 0 with an open fan of four faces, drawn above its ring: three faces
+  // flip. Moving it down grows every face without end, so the largest smallest area is
+  // sought only over the disc around its neighbours; from there it goes to its most
+  // conformal position, where it is in 3D (the ring is the mesh's own). Sought over the
+  // whole plane, the point sent it to (-1.9, -2.9), 2.5 ring radii below the border, and
+  // magnified a face 3.9 times (horse: 30 star radii, 629 times).
+  Mesh_index index;
+  index.points = {{0, 0, 0}, {0.65, 0, 0}, {1.05, 0.84, 0}, {0.18, 1.2, 0}, {-0.5, 0.4, 0}, {-0.95, 0, 0}};
+  std::vector<ICM::Uv> uv = {{0.5, 1.7}};
+  for(int i = 1; i < 6; ++i)
+    uv.push_back({index.points[i][0], index.points[i][1]});
+  for(int i = 0; i < 4; ++i)
+    index.faces.push_back({0, 1 + i, 2 + i});
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_TRUE(index.is_boundary_vertex[0]);
+  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 3);
+  std::vector<char> movable(index.number_of_vertices(), 0);
+  movable[0] = 1;
+  EXPECT_EQ(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
+}
+
 } // namespace

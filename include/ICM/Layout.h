@@ -320,24 +320,45 @@ inline double smallest_area_at(const std::vector<std::array<Uv, 2>>& sides, cons
 }
 
 /// The point p maximising the smallest of the doubled areas of the faces around a vertex,
-/// each affine in p: area_i(p) = cross(b_i - a_i, p - a_i) for the face's other corners a_i,
-/// b_i in order. The maximum of a minimum of affine functions in the plane is where three of
-/// them are equal, so every triple is tried (a vertex has a handful of faces). Returns the
-/// smallest area at the point found.
+/// each affine in p: area_i(p) = g_i . p + c_i for the face's other corners a_i, b_i in
+/// order, over the disc centred at the mean of those corners through the farthest of them.
+/// A closed fan's best points (its kernel) lie inside that disc anyway, but an open one (a
+/// border vertex) grows every face by moving outwards without end: horse, a border vertex
+/// sent 30 of its star's radii out magnified a face 629 times. The maximum of a minimum of
+/// affine functions over a disc is where three of them are equal inside it, where two are
+/// equal on its circle, or where one is largest on it, so all of those are tried (a vertex
+/// has a handful of faces). Returns the smallest area at the point found.
 inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv& best)
 {
-  double best_value = -HUGE_VAL;
   const std::size_t n = sides.size();
+  Uv centre{0, 0};
+  for(const auto& s : sides)
+    for(const Uv& q : s)
+      centre = {centre[0] + q[0] / (2 * n), centre[1] + q[1] / (2 * n)};
+  double radius = 0;
+  for(const auto& s : sides)
+    for(const Uv& q : s)
+      radius = std::max(radius, std::hypot(q[0] - centre[0], q[1] - centre[1]));
+
+  auto gradient = [&](std::size_t x) {
+    const Uv &a = sides[x][0], &b = sides[x][1];
+    return Uv{-(b[1] - a[1]), b[0] - a[0]};
+  };
+  auto constant = [&](std::size_t x) { return twice_signed_area(sides[x][0], sides[x][1], Uv{0, 0}); };
+  double best_value = -HUGE_VAL;
+  auto consider = [&](const Uv& p) {
+    const double value = smallest_area_at(sides, p);
+    if(std::isfinite(value) && value > best_value)
+    {
+      best_value = value;
+      best = p;
+    }
+  };
+  // Three equal inside the disc: solve area_i = area_j = area_k for p.
   for(std::size_t i = 0; i < n; ++i)
     for(std::size_t j = i + 1; j < n; ++j)
       for(std::size_t k = j + 1; k < n; ++k)
       {
-        // area_x(p) = g_x . p + c_x; solve area_i = area_j = area_k for p.
-        auto gradient = [&](std::size_t x) {
-          const Uv &a = sides[x][0], &b = sides[x][1];
-          return Uv{-(b[1] - a[1]), b[0] - a[0]};
-        };
-        auto constant = [&](std::size_t x) { return twice_signed_area(sides[x][0], sides[x][1], Uv{0, 0}); };
         const Uv gi = gradient(i), gj = gradient(j), gk = gradient(k);
         const double m00 = gi[0] - gj[0], m01 = gi[1] - gj[1], r0 = constant(j) - constant(i);
         const double m10 = gi[0] - gk[0], m11 = gi[1] - gk[1], r1 = constant(k) - constant(i);
@@ -345,13 +366,36 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
         if(!(std::abs(det) > 0))
           continue;
         const Uv p{(r0 * m11 - m01 * r1) / det, (m00 * r1 - r0 * m10) / det};
-        const double value = smallest_area_at(sides, p);
-        if(std::isfinite(value) && value > best_value)
-        {
-          best_value = value;
-          best = p;
-        }
+        if(std::hypot(p[0] - centre[0], p[1] - centre[1]) <= radius)
+          consider(p);
       }
+  // Two equal on the circle: the line (g_i - g_j) . p = c_j - c_i meets it.
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = i + 1; j < n; ++j)
+    {
+      const Uv gi = gradient(i), gj = gradient(j);
+      const Uv normal{gi[0] - gj[0], gi[1] - gj[1]};
+      const double length = std::hypot(normal[0], normal[1]);
+      if(!(length > 0))
+        continue;
+      const double offset =
+        (constant(j) - constant(i) - normal[0] * centre[0] - normal[1] * centre[1]) / length;
+      if(!(std::abs(offset) <= radius))
+        continue;
+      const double half_chord = std::sqrt(radius * radius - offset * offset);
+      const Uv unit{normal[0] / length, normal[1] / length};
+      for(double side : {-1.0, 1.0})
+        consider({centre[0] + offset * unit[0] - side * half_chord * unit[1],
+                  centre[1] + offset * unit[1] + side * half_chord * unit[0]});
+    }
+  // One largest on the circle.
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    const Uv g = gradient(i);
+    const double length = std::hypot(g[0], g[1]);
+    if(length > 0)
+      consider({centre[0] + radius * g[0] / length, centre[1] + radius * g[1] / length});
+  }
   return best_value;
 }
 
