@@ -273,8 +273,8 @@ TEST(Unflip, KeepsTheStarAwayFromSlivers)
 {
   // An obtuse face (0, 1, 2) whose far corner 0 was drawn just across its long edge, as a
   // mesh face the intrinsic triangulation does not have comes out of a layout. The star of
-  // 0 is a square fan; its most conformal position is the apex of the square, far from the
-  // long edge, and the repaired faces are not slivers.
+  // 0 is a square fan; its most conformal position is far from the long edge, and the
+  // repaired faces are not slivers.
   Mesh_index index;
   index.points = {{0, 0.2, 0}, {-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
   std::vector<ICM::Uv> uv = {{0, -0.01}, {-1, 0}, {1, 0}, {1, 1}, {-1, 1}};
@@ -286,12 +286,10 @@ TEST(Unflip, KeepsTheStarAwayFromSlivers)
   EXPECT_EQ(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   // The 3D star is the UV ring itself, so its most conformal position is (0, 0.2), where
-  // vertex 0 is in 3D. The doubled areas at (x, y) are 2y, 1 - x, 2 - 2y, 1 + x: at most
-  // 1 together, at (0, 0.5); going from there towards (0, 0.2) each keeps at least half of
-  // that, so 2y = 0.5 stops it at (0, 0.25) (the old unflipping stopped at twice the
-  // distance needed to unflip: y = 0.01, a sliver).
+  // vertex 0 is in 3D and every face is similar to its shape (the first unflipping stopped
+  // at twice the distance needed to unflip: y = 0.01, a sliver).
   EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
-  EXPECT_NEAR(uv[0][1], 0.25, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.2, 1e-12);
 }
 
 TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
@@ -300,8 +298,9 @@ TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
   // flip. Moving it down grows every face without end, so the largest smallest area is
   // sought only over the disc around its neighbours; from there it goes to its most
   // conformal position, where it is in 3D (the ring is the mesh's own). Sought over the
-  // whole plane, the point sent it to (-1.9, -2.9), 2.5 ring radii below the border, and
-  // magnified a face 3.9 times (horse: 30 star radii, 629 times).
+  // whole plane, with a move towards the most conformal point that kept half that area, the
+  // point sent it to (-1.9, -2.9), 2.5 ring radii below the border, and magnified a face
+  // 3.9 times (horse: 30 star radii, 629 times).
   Mesh_index index;
   index.points = {{0, 0, 0}, {0.65, 0, 0}, {1.05, 0.84, 0}, {0.18, 1.2, 0}, {-0.5, 0.4, 0}, {-0.95, 0, 0}};
   std::vector<ICM::Uv> uv = {{0.5, 1.7}};

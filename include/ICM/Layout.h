@@ -399,70 +399,113 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
   return best_value;
 }
 
-/// Where the free corner v of a face (v, a, b) lies in the plane when the face is drawn
-/// similar to its shape in 3D on the images of a and b: p_f = a + (b - a) z with the complex
-/// ratio z = (P_v - P_a) / (P_b - P_a) of the 3D triangle. With the affine map of the face
-/// written alpha w + gamma conj(w), its conformal (LSCM) energy area |gamma|^2 is
-/// proportional to `weight` |p - p_f|^2 with weight = |P_b - P_a|^2 / (2 area), the same
-/// factor for every face, so the weighted mean of the p_f over a star is the position of v
-/// that makes the star most conformal.
-struct Similar_corner
+/// The conformal distortion of a face (v, a, b) of a star as a function of the image p of
+/// its centre v: ||J||^2 / det J = sigma_1 / sigma_2 + sigma_2 / sigma_1 (MIPS) for the affine
+/// map J from the face in 3D to (p, a, b) in the plane. It is 2 exactly where the face is
+/// similar to its 3D shape and grows without bound as the face degenerates. With J = C - p m^T
+/// (C and m from the 3D face and a, b), ||J||^2 is a convex quadratic in p and det J affine,
+/// so the quotient is convex where det J > 0: its sum over a star has one minimum in the
+/// star's kernel, closed fan or open.
+struct Face_conformal_distortion
 {
-  double re = 0, im = 0; ///< z
-  double weight = 0;     ///< 0 for a face degenerate in 3D
+  double mm = 0, cc = 0; ///< ||J||^2 = mm |p|^2 - 2 p . cm + cc
+  Uv cm{0, 0};
+  Uv g{0, 0};            ///< det J = g . p + c
+  double c = 0;
+  bool valid = false;    ///< false for a face degenerate in 3D
 
-  static Similar_corner of(const std::array<double, 3>& pv, const std::array<double, 3>& pa,
-                           const std::array<double, 3>& pb)
+  static Face_conformal_distortion of(const std::array<double, 3>& pv, const std::array<double, 3>& pa,
+                                      const std::array<double, 3>& pb, const Uv& a, const Uv& b)
   {
     namespace d = internal::distortion;
-    const d::Point3 ab = d::difference(pb, pa), av = d::difference(pv, pa);
-    const double ab2 = d::dot(ab, ab), twice_area = d::cross_norm(ab, av);
-    if(!(twice_area > 0) || !(ab2 > 0))
+    // The 3D face in a frame of its plane: P = [[|e1|, e2.x], [0, e2.y]], x along e1 = pa - pv.
+    const d::Point3 e1 = d::difference(pa, pv), e2 = d::difference(pb, pv);
+    const double l1 = std::sqrt(d::dot(e1, e1)), twice_area = d::cross_norm(e1, e2);
+    if(!(l1 > 0) || !(twice_area > 0))
       return {};
-    return {d::dot(ab, av) / ab2, twice_area / ab2, ab2 / twice_area};
+    const double e2x = d::dot(e1, e2) / l1, e2y = twice_area / l1;
+    // M = P^{-1}; J = [a - p, b - p] M = C - p m^T with C = [a, b] M and m = M^T (1, 1).
+    const double m00 = 1 / l1, m01 = -e2x / (l1 * e2y), m11 = 1 / e2y;
+    const Uv m{m00, m01 + m11};
+    const double c00 = a[0] * m00, c01 = a[0] * m01 + b[0] * m11;
+    const double c10 = a[1] * m00, c11 = a[1] * m01 + b[1] * m11;
+    Face_conformal_distortion f;
+    f.mm = m[0] * m[0] + m[1] * m[1];
+    f.cm = {c00 * m[0] + c01 * m[1], c10 * m[0] + c11 * m[1]};
+    f.cc = c00 * c00 + c01 * c01 + c10 * c10 + c11 * c11;
+    // det J = twice_signed_area(p, a, b) / det P, and that area is a x b + p x (a - b).
+    f.g = {(a[1] - b[1]) / twice_area, -(a[0] - b[0]) / twice_area};
+    f.c = (a[0] * b[1] - a[1] * b[0]) / twice_area;
+    f.valid = true;
+    return f;
   }
-  Uv image(const Uv& a, const Uv& b) const
-  {
-    const double dx = b[0] - a[0], dy = b[1] - a[1];
-    return {a[0] + dx * re - dy * im, a[1] + dx * im + dy * re};
-  }
+  double numerator(const Uv& p) const { return mm * (p[0] * p[0] + p[1] * p[1]) - 2 * (p[0] * cm[0] + p[1] * cm[1]) + cc; }
+  double determinant(const Uv& p) const { return g[0] * p[0] + g[1] * p[1] + c; }
 };
 
-/// The position of the centre of a fan that makes its faces most conformal: the weighted
-/// mean of the `corners`' images on the `sides`. Returns false for a fan degenerate in 3D.
-inline bool most_conformal_centre(const std::vector<std::array<Uv, 2>>& sides,
-                                  const std::vector<Similar_corner>& corners, Uv& centre)
+/// The sum of the `faces`' conformal distortions at p, HUGE_VAL unless every face of the
+/// `sides` keeps a positive area there.
+inline double star_conformal_distortion(const std::vector<Face_conformal_distortion>& faces,
+                                        const std::vector<std::array<Uv, 2>>& sides, const Uv& p)
 {
-  double x = 0, y = 0, total = 0;
-  for(std::size_t k = 0; k < sides.size(); ++k)
-  {
-    const Uv p = corners[k].image(sides[k][0], sides[k][1]);
-    x += corners[k].weight * p[0];
-    y += corners[k].weight * p[1];
-    total += corners[k].weight;
-  }
-  if(!(total > 0))
-    return false;
-  centre = {x / total, y / total};
-  return true;
+  if(!(smallest_area_at(sides, p) > 0))
+    return HUGE_VAL;
+  double sum = 0;
+  for(const auto& f : faces)
+    if(f.valid)
+      sum += f.numerator(p) / f.determinant(p);
+  return sum;
 }
 
-/// The point of the segment from `from` towards `to` nearest `to` at which every face of the
-/// fan keeps at least `least` doubled area, given that it has that much at `from` (each
-/// area is affine along the segment).
-inline Uv towards_keeping_area(const std::vector<std::array<Uv, 2>>& sides, const Uv& from, const Uv& to,
-                               double least)
+/// Moves p, a point where every face of the star is positive, to where the star is most
+/// conformal: the minimum of its faces' summed conformal distortion, by Newton's method in
+/// the plane (the sum is convex), each step halved until it lowers the sum with every face
+/// kept positive.
+inline Uv most_conformal_position(const std::vector<Face_conformal_distortion>& faces,
+                                  const std::vector<std::array<Uv, 2>>& sides, Uv p)
 {
-  double s = 1.0;
-  for(const auto& side : sides)
+  constexpr int max_steps = 50;
+  double value = star_conformal_distortion(faces, sides, p);
+  for(int step = 0; step < max_steps && value < HUGE_VAL; ++step)
   {
-    const double at_from = twice_signed_area(side[0], side[1], from);
-    const double at_to = twice_signed_area(side[0], side[1], to);
-    if(at_to < least)
-      s = std::min(s, (at_from - least) / (at_from - at_to));
+    // d(N/D) = dN/D - N g/D^2; d2(N/D) = d2N/D - (dN g^T + g dN^T)/D^2 + 2 N g g^T/D^3.
+    double gx = 0, gy = 0, hxx = 0, hxy = 0, hyy = 0;
+    for(const auto& f : faces)
+    {
+      if(!f.valid)
+        continue;
+      const double n = f.numerator(p), d = f.determinant(p);
+      const double nx = 2 * (f.mm * p[0] - f.cm[0]), ny = 2 * (f.mm * p[1] - f.cm[1]);
+      gx += nx / d - n * f.g[0] / (d * d);
+      gy += ny / d - n * f.g[1] / (d * d);
+      const double twice_n_over_d3 = 2 * n / (d * d * d);
+      hxx += 2 * f.mm / d - 2 * nx * f.g[0] / (d * d) + twice_n_over_d3 * f.g[0] * f.g[0];
+      hyy += 2 * f.mm / d - 2 * ny * f.g[1] / (d * d) + twice_n_over_d3 * f.g[1] * f.g[1];
+      hxy += -(nx * f.g[1] + ny * f.g[0]) / (d * d) + twice_n_over_d3 * f.g[0] * f.g[1];
+    }
+    const double det = hxx * hyy - hxy * hxy;
+    Uv direction = det > 0 && hxx > 0 ? Uv{-(hyy * gx - hxy * gy) / det, -(hxx * gy - hxy * gx) / det} : Uv{-gx, -gy};
+    const double decrease = -(gx * direction[0] + gy * direction[1]);
+    if(!(decrease > 1e-24 * value))
+      break;
+    bool moved = false;
+    for(double t = 1; t > 1e-12; t *= 0.5)
+    {
+      const Uv q{p[0] + t * direction[0], p[1] + t * direction[1]};
+      const double at_q = star_conformal_distortion(faces, sides, q);
+      // Near the minimum a full Newton step changes the sum by less than its rounding.
+      if(at_q < value || (t == 1 && at_q <= value * (1 + 1e-14)))
+      {
+        p = q;
+        value = at_q;
+        moved = true;
+        break;
+      }
+    }
+    if(!moved)
+      break;
   }
-  s = std::max(0.0, s);
-  return {from[0] + s * (to[0] - from[0]), from[1] + s * (to[1] - from[1])};
+  return p;
 }
 
 /// A wedge that must move with another one: the other side of a seam through a flat vertex.
@@ -489,13 +532,13 @@ struct Seam_twin
 /// vertices' images, and a very obtuse face (horse: 163 degrees, mannequin-devil: 166) can
 /// come out flipped. For each flipped face, the movable corner whose faces can be made most
 /// positive (`max_min_area_point`: the largest smallest doubled area mu) moves. If mu > 0 it
-/// goes from that point towards the position where its star is most conformal
-/// (`most_conformal_centre`: its faces as similar as they can be to their shapes in the mesh,
-/// `index.points`) as far as every face keeps mu / 2. Moving only as far as needed to unflip,
-/// as before, left slivers: mean QC 13.7 (max 8247) on pig under the angle energy, now 1.35.
-/// Else it moves to the max-min point and a later pass moves its neighbours. A border vertex
-/// may move; the side of a seam moves only with its `twins` entry (its faces and its twin's,
-/// seen in its frame, are the whole star of a flat vertex), else not at all.
+/// goes from that point to where its star is most conformal (`most_conformal_position`: the
+/// least summed conformal distortion of its faces against their shapes in the mesh,
+/// `index.points`, every face kept positive). Moving only as far as needed to unflip, as at
+/// first, left slivers: mean QC 13.7 (max 8247) on pig under the angle energy. Else it moves
+/// to the max-min point and a later pass moves its neighbours. A border vertex may move; the
+/// side of a seam moves only with its `twins` entry (its faces and its twin's, seen in its
+/// frame, are the whole star of a flat vertex), else not at all.
 inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vector<Uv>& uv,
                                      const std::vector<char>& is_movable,
                                      const std::vector<Seam_twin>& twins = {}, int max_passes = 8)
@@ -511,14 +554,12 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
   // The other two corners of every face around v, in the face's order, and those around its
   // twin seen in v's frame.
   std::vector<std::array<Uv, 2>> sides;
-  std::vector<Similar_corner> corners;
+  std::vector<Face_conformal_distortion> distortions;
   auto add_sides = [&](int v, const Seam_twin* seen_from) {
     for(int i = first[v]; i < first[v + 1]; ++i)
     {
       const auto& f = index.faces[ring[i]];
       const int c = f[0] == v ? 0 : f[1] == v ? 1 : 2;
-      corners.push_back(
-        Similar_corner::of(index.points[v], index.points[f[(c + 1) % 3]], index.points[f[(c + 2) % 3]]));
       Uv a = uv[f[(c + 1) % 3]], b = uv[f[(c + 2) % 3]];
       if(seen_from != nullptr)
       {
@@ -526,11 +567,13 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
         b = seen_from->to_this(b);
       }
       sides.push_back({a, b});
+      distortions.push_back(Face_conformal_distortion::of(index.points[v], index.points[f[(c + 1) % 3]],
+                                                          index.points[f[(c + 2) % 3]], a, b));
     }
   };
   auto sides_around = [&](int v) {
     sides.clear();
-    corners.clear();
+    distortions.clear();
     add_sides(v, nullptr);
     if(const Seam_twin* twin = twin_of(v))
       add_sides(twin->wedge, twin);
@@ -544,7 +587,7 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
       if(twice_signed_area(uv[face[0]], uv[face[1]], uv[face[2]]) > 0)
         continue;
       // The corner whose faces can be made most positive (the largest mu), moved from the
-      // point that does so towards its star's most conformal position.
+      // point that does so to its star's most conformal position.
       int best = -1;
       Uv best_point{};
       double best_value = -HUGE_VAL;
@@ -557,9 +600,8 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
         const double value = max_min_area_point(sides, target);
         if(value > best_value && (value > 0 || value > smallest_at(uv[v])))
         {
-          Uv centre;
-          if(value > 0 && most_conformal_centre(sides, corners, centre))
-            target = towards_keeping_area(sides, target, centre, 0.5 * value);
+          if(value > 0)
+            target = most_conformal_position(distortions, sides, target);
           best = v;
           best_point = target;
           best_value = value;
