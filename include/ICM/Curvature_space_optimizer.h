@@ -426,6 +426,8 @@ public:
     for(const Eigen::Triplet<double, int>& entry : hessian)
       if(entry.row() == entry.col())
         trace += entry.value();
+    if(!(trace > 0))
+      return false;
     const double mu = 1e-6 * trace / nv;
     for(int v = 0; v < nv; ++v)
       hessian.emplace_back(v, v, mu);
@@ -435,14 +437,16 @@ public:
     double squares = 0;
     for(std::size_t i = first_row_entry; i < hessian.size(); ++i)
       squares += hessian[i].value() * hessian[i].value();
-    const double delta = squares / std::max(n, 1) / (1e8 * std::max(trace / nv, std::numeric_limits<double>::min()));
+    const double delta = squares / std::max(n, 1) / (1e8 * trace / nv);
+    if(!std::isfinite(delta))
+      return false;
     for(int i = 0; i < n; ++i)
       hessian.emplace_back(nv + i, nv + i, -delta);
     size_ = nv + n;
     Matrix k(size_, size_);
     k.setFromTriplets(hessian.begin(), hessian.end());
     solver_.compute(k);
-    return solver_.info() == Eigen::Success && std::isfinite(delta) && trace > 0;
+    return solver_.info() == Eigen::Success;
   }
 
   /// x for r given per singular vertex, in the order of `singular`.

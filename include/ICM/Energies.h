@@ -897,8 +897,6 @@ struct Area_distortion
   }
 };
 
-/// The ABF energy of Sec. III-D against the mesh's own angles: the mean over corners of
-/// (theta - theta_mesh)^2 (radians^2, the `angle_distortion` of doc/distortion.md).
 namespace internal {
 
 /// d angle(f, a) / d u_b of mesh face f in the vertex-scaling form, from the face's angles at
@@ -926,6 +924,8 @@ std::array<std::array<double, 3>, 3> angle_jacobian(const Energy_state<Metric>& 
 
 } // namespace internal
 
+/// The ABF energy of Sec. III-D against the mesh's own angles: the mean over corners of
+/// (theta - theta_mesh)^2 (radians^2, the `angle_distortion` of doc/distortion.md).
 struct Angle_distortion
 {
   static constexpr const char* name = "angle";
