@@ -242,6 +242,14 @@ TEST(IntrinsicDelaunayMetric, PtolemyFlipOfACyclicDiamondGivesTheOtherDiagonal)
   }
 }
 
+/// Unflips `uv` with vertex 0 alone movable; returns how many moves were made.
+int unflip_moving_vertex_0(const Mesh_index& index, std::vector<ICM::Uv>& uv)
+{
+  std::vector<char> movable(index.number_of_vertices(), 0);
+  movable[0] = 1;
+  return ICM::unflip_by_moving_vertices(index, uv, movable);
+}
+
 TEST(Unflip, MovesAVertexBackIntoItsRing)
 {
   // A hexagon fan whose centre was placed outside the ring: its faces flip; moving the
@@ -258,10 +266,8 @@ TEST(Unflip, MovesAVertexBackIntoItsRing)
     index.faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
   ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
   ASSERT_GT(ICM::count_flipped_faces(index, uv), 0);
-  std::vector<char> movable(index.number_of_vertices(), 0);
-  movable[0] = 1;
   const std::vector<ICM::Uv> ring(uv.begin() + 1, uv.end());
-  EXPECT_GE(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_GE(unflip_moving_vertex_0(index, uv), 1);
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   EXPECT_TRUE(std::equal(ring.begin(), ring.end(), uv.begin() + 1)); // only the centre moved
   // To where the star is most conformal: the ring is the mesh's own, so the centre.
@@ -281,9 +287,7 @@ TEST(Unflip, KeepsTheStarAwayFromSlivers)
   index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
   ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
   ASSERT_EQ(ICM::count_flipped_faces(index, uv), 1);
-  std::vector<char> movable(index.number_of_vertices(), 0);
-  movable[0] = 1;
-  EXPECT_EQ(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   // The 3D star is the UV ring itself, so its most conformal position is (0, 0.2), where
   // vertex 0 is in 3D and every face is similar to its shape (the first unflipping stopped
@@ -311,9 +315,7 @@ TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
   ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
   ASSERT_TRUE(index.is_boundary_vertex[0]);
   ASSERT_EQ(ICM::count_flipped_faces(index, uv), 3);
-  std::vector<char> movable(index.number_of_vertices(), 0);
-  movable[0] = 1;
-  EXPECT_EQ(ICM::unflip_by_moving_vertices(index, uv, movable), 1);
+  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
   EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
