@@ -7,13 +7,13 @@
 //   seam_Polyhedron_3 [INPUT SEAMS.selection.txt [OUTPUT.off]]
 //                     (defaults: sphere966.off, sphere966.selection.txt, result.off)
 //
-// ICM reads the seams as cuts of one surface (`ICM::Seam_reading::Cut`): the metric is flat
-// across them, so the two sides of a seam get one length and fit together by a rigid
-// motion, and the seams' ends and branch points are the cones. With
-// `ICM::Seam_reading::Border` (the default, CGAL's reading) each side is free border of
-// the disk, as with CGAL's own parameterizers.
+// `ICM::parameterize` on the seam mesh reads the seams as cuts of one surface: the metric is
+// flat across them, so the two sides of a seam get one length and fit together by a rigid
+// motion, and the seams' ends and branch points are the cones. CGAL's `parameterize()` with
+// `ICM::Inverse_curvature_map_parameterizer_3<Seam_mesh>` would read each side as free border
+// of the disk instead, as CGAL's own parameterizers do.
 
-#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polyhedron_3.h>
@@ -24,7 +24,6 @@
 // After the graph traits of the mesh under it.
 #include <CGAL/boost/graph/Seam_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/IO/File_off.h>
-#include <CGAL/Surface_mesh_parameterization/parameterize.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -85,20 +84,17 @@ int main(int argc, char** argv)
   Uv_table uv_table;
   Uv_map uv_map(uv_table);
 
-  ICM::Parameterization_options options;
-  options.seams = ICM::Seam_reading::Cut;
-  ICM::Inverse_curvature_map_parameterizer_3<Seam_mesh> parameterizer(options);
-  const SMP::Error_code status = SMP::parameterize(mesh, parameterizer, bhd, uv_map);
-  const ICM::Parameterization_report& report = parameterizer.report();
-  if(status != SMP::OK)
+  const ICM::Surface_parameterization_report report = ICM::parameterize(mesh, uv_map);
+  if(report.status != SMP::OK)
   {
-    std::cerr << ICM::error_message(status) << ": " << report.message << "\n";
+    std::cerr << ICM::error_message(report.status) << ": " << report.message << "\n";
     return EXIT_FAILURE;
   }
-  std::cout << input << ": " << report.vertices << " vertices, " << report.faces << " faces, "
-            << report.newton_iterations << " Newton iterations, max curvature off the cones "
-            << report.max_curvature_error << ", metric " << report.metric << ", "
-            << report.flipped_faces << " flipped faces, " << report.seconds_total << " s\n";
+  const ICM::Chart_report& chart = report.charts.front();
+  std::cout << input << ": " << chart.vertices << " vertices, " << chart.faces << " faces, "
+            << chart.cones.size() << " cones, " << chart.newton_iterations
+            << " Newton iterations, max curvature off the cones " << chart.max_curvature_error << ", metric "
+            << chart.metric << ", " << chart.flipped_faces << " flipped faces, " << report.seconds_total << " s\n";
 
   std::ofstream out(output);
   SMP::IO::output_uvmap_to_off(mesh, bhd, uv_map, out);

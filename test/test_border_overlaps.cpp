@@ -34,7 +34,7 @@ Mesh_index make_index(const std::vector<Uv>& plane, const std::vector<std::array
   for(const Uv& p : plane)
     index.points.push_back({p[0], p[1], 0.0});
   index.faces = faces;
-  const ICM::internal::Index_status status = ICM::internal::build_connectivity(index);
+  const ICM::Status status = ICM::internal::build_connectivity(index);
   EXPECT_TRUE(status.ok()) << status.message;
   return index;
 }

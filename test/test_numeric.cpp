@@ -47,6 +47,25 @@ Mesh_index equilateral_grid(int n)
   return index;
 }
 
+/// A strip of 2 m equilateral triangles in a row, one unit wide: every hop of the layout's
+/// face tree doubles its error estimate, which overflows after some 1000 hops.
+Mesh_index equilateral_strip(int m)
+{
+  Mesh_index index;
+  for(int i = 0; i <= m; ++i)
+  {
+    index.points.push_back({double(i), 0.0, 0.0});
+    index.points.push_back({i + 0.5, std::sqrt(3.0) / 2, 0.0});
+  }
+  for(int i = 0; i < m; ++i)
+  {
+    index.faces.push_back({2 * i, 2 * i + 2, 2 * i + 1});
+    index.faces.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
+  }
+  EXPECT_TRUE(ICM::internal::build_connectivity(index).ok());
+  return index;
+}
+
 using icm_test::random_perturbation;
 
 std::vector<char> interior_of(const Mesh_index& index)
@@ -85,7 +104,7 @@ TEST(MeshIndex, NonManifoldVertexIsRefused)
   Mesh_index bowtie;
   bowtie.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
   bowtie.faces = {{0, 1, 2}, {0, 3, 4}}; // two triangles sharing only vertex 0
-  const ICM::internal::Index_status status = ICM::internal::build_connectivity(bowtie);
+  const ICM::Status status = ICM::internal::build_connectivity(bowtie);
   EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find("non-manifold vertex"), std::string::npos) << status.message;
 }
@@ -443,4 +462,23 @@ TEST(Layout, EquilateralGridLaysOutAsItself)
       EXPECT_NEAR(std::hypot(uv[i][0] - uv[j][0], uv[i][1] - uv[j][1]),
                   std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
     }
+}
+
+TEST(Layout, LongStripLaysOutAsItselfInLinearTime)
+{
+  // 6000 faces in a row: 3000 hops from the central root to either end, where the error
+  // estimate has overflowed to infinity long before. The layout is still every face once
+  // (a strip of 1 x 550 squares used to offer its faces again without end) and isometric.
+  const Mesh_index strip = equilateral_strip(3000);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(strip);
+  ICM::Curvature_map<> curvature(strip, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
+  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(strip, lengths, curvature.face_angles());
+  const ICM::Layout_check check = ICM::check_layout(strip, lengths, uv);
+  EXPECT_EQ(check.flipped_faces, 0);
+  EXPECT_LT(check.max_relative_length_error, 1e-9);
+  const int last = strip.number_of_vertices() - 1;
+  EXPECT_NEAR(std::hypot(uv[last][0] - uv[0][0], uv[last][1] - uv[0][1]),
+              std::hypot(strip.points[last][0] - strip.points[0][0], strip.points[last][1] - strip.points[0][1]),
+              1e-9 * strip.points[last][0]);
 }

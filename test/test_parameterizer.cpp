@@ -5,6 +5,7 @@
 #include <ICM/Distortion.h>
 #include <ICM/IO/read_seam_selection.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -542,31 +543,31 @@ TEST(ParameterizerDropIn, SeamMeshSeamsReadAsBorderOrAsCuts)
     if(is_border(h, mesh))
       bhd = h;
 
-  for(const ICM::Seam_reading reading : {ICM::Seam_reading::Border, ICM::Seam_reading::Cut})
-  {
-    const bool as_cut = reading == ICM::Seam_reading::Cut;
-    const std::string what = as_cut ? "seams as cuts" : "seams as border";
-    auto uv_pm = sm.add_property_map<SM_halfedge, Point_2>(as_cut ? "h:uv_cut" : "h:uv_border",
-                                                           Point_2(nan_value, nan_value)).first;
-    ICM::Parameterization_options options;
-    options.seams = reading;
-    Parameterizer<Seam_mesh> parameterizer(options);
-    Outcome run;
-    run.status = SMP::parameterize(mesh, parameterizer, bhd, uv_pm);
-    run.report = parameterizer.report();
-    expect_good_run(run, mesh, uv_pm, what);
-    const auto [length_mismatch, angle_defect] = seam_mismatch(mesh, sm, uv_pm);
-    EXPECT_LT(length_mismatch, 1e-7) << what;
-    if(as_cut)
-    {
-      EXPECT_LT(length_mismatch, 1e-9) << what;
-      EXPECT_LT(angle_defect, 1e-8) << what;
-    }
-    else
-    {
-      EXPECT_GT(angle_defect, 1e-2) << what;
-    }
-  }
+  // As border: CGAL's parameterize() with the disk parameterizer.
+  auto border_uv = sm.add_property_map<SM_halfedge, Point_2>("h:uv_border", Point_2(nan_value, nan_value)).first;
+  Parameterizer<Seam_mesh> parameterizer;
+  Outcome run;
+  run.status = SMP::parameterize(mesh, parameterizer, bhd, border_uv);
+  run.report = parameterizer.report();
+  expect_good_run(run, mesh, border_uv, "seams as border");
+  const auto [border_length_mismatch, border_angle_defect] = seam_mismatch(mesh, sm, border_uv);
+  EXPECT_LT(border_length_mismatch, 1e-7);
+  EXPECT_GT(border_angle_defect, 1e-2);
+
+  // As cuts: ICM::parameterize on the seam mesh, the seams' ends and centre its only cones.
+  auto cut_uv = sm.add_property_map<SM_halfedge, Point_2>("h:uv_cut", Point_2(nan_value, nan_value)).first;
+  const ICM::Surface_parameterization_report report = ICM::parameterize(mesh, cut_uv);
+  ASSERT_EQ(report.status, SMP::OK) << report.message;
+  ASSERT_EQ(report.charts.size(), 1u);
+  EXPECT_EQ(report.charts[0].flipped_faces, 0);
+  EXPECT_EQ(report.charts[0].seam_edges, static_cast<int>(star.size()));
+  EXPECT_EQ(report.charts[0].cones.size(), 5u);
+  for(auto v : vertices(mesh))
+    EXPECT_TRUE(std::isfinite(get(cut_uv, v).x()) && std::isfinite(get(cut_uv, v).y()));
+  EXPECT_EQ(ICM::measure_distortion(mesh, cut_uv).flipped_faces, 0u);
+  const auto [cut_length_mismatch, cut_angle_defect] = seam_mismatch(mesh, sm, cut_uv);
+  EXPECT_LT(cut_length_mismatch, 1e-9);
+  EXPECT_LT(cut_angle_defect, 1e-8);
 }
 
 // =============================================================================================

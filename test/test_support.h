@@ -77,7 +77,7 @@ inline ICM::internal::Mesh_index index_of(const std::string& path)
   EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, mesh)) << path;
   ICM::internal::Mesh_index index;
   std::vector<decltype(mesh)::Vertex_index> vertices;
-  const ICM::internal::Index_status status =
+  const ICM::Status status =
     ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices);
   EXPECT_TRUE(status.ok()) << status.message;
   return index;

@@ -525,6 +525,30 @@ TEST(Surfaces, EnergyKeepsTheUserConesAngles)
   EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
 }
 
+TEST(Surfaces, LongFlatStripMapsToItself)
+{
+  // A 1 x 2000 rectangle of unit squares: the layout's error estimate overflows some 1200
+  // hops from its root (a 1 x 550 strip used to hang). The map is the strip itself.
+  const int n = 2000;
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> v;
+  for(int i = 0; i <= n; ++i)
+  {
+    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 0, 0)));
+    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 1, 0)));
+  }
+  for(int i = 0; i < n; ++i)
+  {
+    mesh.add_face(v[2 * i], v[2 * i + 2], v[2 * i + 3]);
+    mesh.add_face(v[2 * i], v[2 * i + 3], v[2 * i + 1]);
+  }
+  const Result r = run(mesh, "strip");
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  EXPECT_TRUE(r.report.charts[0].cones.empty());
+  EXPECT_LT(r.measures.log_area_distortion, 1e-12);
+  EXPECT_LT(r.measures.qc_max, 1 + 1e-9);
+}
+
 TEST(Surfaces, HorseGetsConesByDefaultAndLessAreaDistortion)
 {
   // The horse's free-boundary optimum shrinks some areas 230-fold (max |u - u0| = 2.2):

@@ -30,6 +30,7 @@
 #include <ICM/Dynamic_laplacian.h>
 #include <ICM/Energies.h>
 #include <ICM/Inverse_curvature_map.h>
+#include <ICM/internal/Option_checks.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -119,6 +120,25 @@ struct Curvature_space_options
   /// The Dirichlet (or, for the projected gradient, the inverse curvature map) Newton.
   Newton_options newton;
 };
+
+/// Whether every field of `options` is in range (see `check_options(const Newton_options&)`).
+inline Status check_options(const Curvature_space_options& options, const std::string& prefix = "energy.")
+{
+  return internal::Option_checks(prefix)
+    .real("tolerance", options.tolerance, 0, true)
+    .real("energy_tolerance", options.energy_tolerance, 0, true)
+    .at_least("stall_window", options.stall_window, 1)
+    .at_least("max_iterations", options.max_iterations, 0)
+    .real("max_step", options.max_step, 0, false)
+    .at_least("memory", options.memory, 1)
+    .at_least("frozen_steps", options.frozen_steps, 0)
+    .real("trial_tolerance_factor", options.trial_tolerance_factor, 0, true)
+    .one_of("preconditioner", options.preconditioner, 4)
+    .at_least("max_line_search_steps", options.max_line_search_steps, 1)
+    .real("armijo", options.armijo, 0, false, 1, false)
+    .nested(check_options(options.newton, prefix + "newton."))
+    .status();
+}
 
 /// What an optimizer did.
 struct Curvature_space_report
@@ -722,7 +742,9 @@ Curvature_space_report minimize_energy_on_singular_values(
       is_singular[v] = laplacian.free_index(v) < 0;
   }
   const std::vector<int> singular = internal::singular_list(is_singular);
-  report.message = internal::singular_set_problem(index, metric, singular);
+  report.message = check_options(options).message;
+  if(report.message.empty())
+    report.message = internal::singular_set_problem(index, metric, singular);
   if(!report.message.empty())
     return report;
   if(u.size() != nv)
@@ -988,7 +1010,9 @@ Curvature_space_report minimize_energy_by_projected_gradient(
   constexpr bool has_value = has_energy_value<Energy, Metric>;
   const int nv = index.number_of_vertices();
   const std::vector<int> singular = internal::singular_list(is_singular);
-  report.message = internal::singular_set_problem(index, metric, singular);
+  report.message = check_options(options).message;
+  if(report.message.empty())
+    report.message = internal::singular_set_problem(index, metric, singular);
   if(!report.message.empty())
     return report;
   double value = 0;

@@ -16,6 +16,7 @@
 #ifndef ICM_CUT_GRAPH_H
 #define ICM_CUT_GRAPH_H
 
+#include <ICM/Status.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <boost/graph/compressed_sparse_row_graph.hpp>
@@ -36,13 +37,6 @@
 
 namespace ICM {
 
-/// Outcome of a cut: `ok`, or the reason it is not a disk.
-struct Cut_status
-{
-  bool ok = true;
-  std::string message;
-};
-
 struct Cut_graph_options
 {
   /// Remove seam branches that end at a vertex which is neither a cone nor on the border:
@@ -60,8 +54,8 @@ struct Cut_graph_result
   int number_of_generators = 0;       ///< homology generators added, 2g on genus g
   int number_of_pruned_edges = 0;     ///< dangling seam edges removed
   double seam_length = 0;             ///< total 3D length of the seam edges
-  Cut_status status;
-  bool ok() const { return status.ok; }
+  Status status;
+  bool ok() const { return status.ok(); }
 };
 
 /// The surface cut open along its seams, as a mesh of its own.
@@ -77,14 +71,20 @@ struct Cut_mesh
   /// surface edge -> its disk edges: the side in `edge_faces[e][0]`, then the side in
   /// `edge_faces[e][1]` on a seam edge (-1 off the cut, where one disk edge serves both faces)
   std::vector<std::array<int, 2>> disk_edges;
-  Cut_status status;
-  bool ok() const { return status.ok; }
+  Status status;
+  bool ok() const { return status.ok(); }
 };
 
 namespace internal {
 /// The helpers of this header, in their own namespace: names such as `Union_find` are common
 /// enough to meet another header's.
 namespace cutting {
+
+/// A cut that does not leave one disk, and why.
+inline Status not_a_disk(std::string why)
+{
+  return Status::failure(CGAL::Surface_mesh_parameterization::ERROR_NO_TOPOLOGICAL_DISC, std::move(why));
+}
 
 /// Union–find by size with path halving, for pieces, wedges and terminal trees.
 class Union_find
@@ -133,11 +133,6 @@ struct Surface_arc
 using Surface_graph =
   boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, Surface_arc>;
 
-inline double surface_edge_length(const Mesh_index& index, int e)
-{
-  return std::sqrt(squared_distance(index.points[index.edges[e][0]], index.points[index.edges[e][1]]));
-}
-
 inline Surface_graph make_surface_graph(const Mesh_index& index)
 {
   std::vector<std::pair<std::size_t, std::size_t>> arcs;
@@ -147,7 +142,7 @@ inline Surface_graph make_surface_graph(const Mesh_index& index)
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const std::size_t a = index.edges[e][0], b = index.edges[e][1];
-    const Surface_arc arc{e, surface_edge_length(index, e)};
+    const Surface_arc arc{e, edge_length(index, e)};
     arcs.emplace_back(a, b);
     properties.push_back(arc);
     arcs.emplace_back(b, a);
@@ -250,7 +245,7 @@ inline int join_terminals(const Mesh_index& index, const Surface_graph& graph,
   {
     const int a = index.edges[e][0], b = index.edges[e][1];
     if(label[a] != label[b] && label[a] >= 0 && label[b] >= 0)  // -1: unreachable, a second component
-      bridges.emplace_back(distance[a] + surface_edge_length(index, e) + distance[b], e);
+      bridges.emplace_back(distance[a] + edge_length(index, e) + distance[b], e);
   }
   std::sort(bridges.begin(), bridges.end());
 
@@ -542,11 +537,11 @@ inline std::string describe_seam_edge(const Mesh_index& index, int e)
          std::to_string(index.edges[e][1]) + ")";
 }
 
-inline Cut_status check_cone_flags(const Mesh_index& index, const std::vector<char>& is_cone)
+inline Status check_cone_flags(const Mesh_index& index, const std::vector<char>& is_cone)
 {
   if(!is_cone.empty() && static_cast<int>(is_cone.size()) != index.number_of_vertices())
-    return {false, "the cone flags have " + std::to_string(is_cone.size()) +
-                     " entries, the mesh has " + std::to_string(index.number_of_vertices()) + " vertices"};
+    return Status::wrong_parameter("the cone flags have " + std::to_string(is_cone.size()) +
+                     " entries, the mesh has " + std::to_string(index.number_of_vertices()) + " vertices");
   return {};
 }
 
@@ -557,50 +552,50 @@ inline Cut_status check_cone_flags(const Mesh_index& index, const std::vector<ch
 /// with every cone (`is_cone`, per vertex; empty means none) on the cut or the border.
 /// The message names the first failure: a malformed seam, a cone off the cut, or the pieces,
 /// genus and boundary loops the cut leaves.
-inline Cut_status check_cut_graph(const internal::Mesh_index& index, const std::vector<char>& is_seam,
+inline Status check_cut_graph(const internal::Mesh_index& index, const std::vector<char>& is_seam,
                                   const std::vector<char>& is_cone = {})
 {
   using namespace internal::cutting;
   if(index.number_of_faces() == 0)
-    return {false, "the mesh has no faces"};
+    return Status::failure(CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH, "the mesh has no faces");
   if(static_cast<int>(is_seam.size()) != index.number_of_edges())
-    return {false, "the seam flags have " + std::to_string(is_seam.size()) + " entries, the mesh has " +
-                     plural(index.number_of_edges(), "edge")};
-  Cut_status status = check_cone_flags(index, is_cone);
-  if(!status.ok)
+    return Status::wrong_parameter("the seam flags have " + std::to_string(is_seam.size()) + " entries, the mesh has " +
+                     plural(index.number_of_edges(), "edge"));
+  Status status = check_cone_flags(index, is_cone);
+  if(!status.ok())
     return status;
   for(int e = 0; e < index.number_of_edges(); ++e)
     if(is_seam[e] && is_surface_border_edge(index, e))
-      return {false, "a seam edge is a border edge: " + describe_seam_edge(index, e) +
-                       " is on the border already"};
+      return not_a_disk("a seam edge is a border edge: " + describe_seam_edge(index, e) +
+                       " is on the border already");
 
   const std::vector<int> degree = seam_degrees(index, is_seam);
   for(int v = 0; v < index.number_of_vertices(); ++v)
     if(!is_cone.empty() && is_cone[v] && degree[v] == 0 && !index.is_boundary_vertex[v])
-      return {false, "cone vertex " + std::to_string(v) + " is neither on a seam nor on the border"};
+      return not_a_disk("cone vertex " + std::to_string(v) + " is neither on a seam nor on the border");
   const int lone = find_lone_seam_edge(index, is_seam, degree);
   if(lone >= 0)
-    return {false, "seam " + describe_seam_edge(index, lone) +
+    return not_a_disk("seam " + describe_seam_edge(index, lone) +
                      " touches no other seam nor the border: its two sides would be one edge "
-                     "(cut along a path of at least two edges)"};
+                     "(cut along a path of at least two edges)");
 
   const Cut_topology topology = cut_topology(index, is_seam, cut_wedges(index, is_seam));
   const int seams = static_cast<int>(std::count(is_seam.begin(), is_seam.end(), char(1)));
   if(topology.pieces > 1)
-    return {false, "the seams cut the surface into " + std::to_string(topology.pieces) + " pieces"};
+    return not_a_disk("the seams cut the surface into " + std::to_string(topology.pieces) + " pieces");
   if(topology.boundary_loops == 0)
-    return {false, std::string(seams == 0 ? "there are no seams" : "the seams cut nothing open") +
+    return not_a_disk(std::string(seams == 0 ? "there are no seams" : "the seams cut nothing open") +
                      " and the surface is closed (genus " + std::to_string(index.genus()) +
-                     "): nothing to lay out as a disk"};
+                     "): nothing to lay out as a disk");
   if(topology.genus() > 0)
-    return {false, "the seams leave genus " + std::to_string(topology.genus()) +
+    return not_a_disk("the seams leave genus " + std::to_string(topology.genus()) +
                      (topology.boundary_loops > 1
                         ? " and " + plural(topology.boundary_loops, "boundary loop")
                         : std::string()) +
-                     " (a disk has genus 0 and one boundary loop)"};
+                     " (a disk has genus 0 and one boundary loop)");
   if(topology.boundary_loops > 1)
-    return {false, "the seams leave " + plural(topology.boundary_loops, "boundary loop") +
-                     " (a disk has one): they must join every border"};
+    return not_a_disk("the seams leave " + plural(topology.boundary_loops, "boundary loop") +
+                     " (a disk has one): they must join every border");
   return {};
 }
 
@@ -616,11 +611,11 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
   Cut_graph_result result;
   if(index.number_of_faces() == 0)
   {
-    result.status = {false, "the mesh has no faces"};
+    result.status = Status::failure(CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH, "the mesh has no faces");
     return result;
   }
   result.status = check_cone_flags(index, is_cone);
-  if(!result.status.ok)
+  if(!result.status.ok())
     return result;
   std::vector<int> interior_cones;
   for(int v = 0; v < static_cast<int>(is_cone.size()); ++v)
@@ -629,8 +624,8 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
   result.number_of_terminals = index.number_of_boundary_loops() + static_cast<int>(interior_cones.size());
   if(index.number_of_boundary_loops() == 0 && index.genus() == 0 && interior_cones.size() < 2)
   {
-    result.status = {false, "a closed genus-0 surface needs at least 2 cones to be cut into a disk, got " +
-                              std::to_string(interior_cones.size())};
+    result.status = Status::wrong_parameter("a closed genus-0 surface needs at least 2 cones to be cut into a disk, got " +
+                              std::to_string(interior_cones.size()));
     return result;
   }
 
@@ -642,15 +637,15 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
     result.number_of_generators = add_homology_generators(index, graph, interior_cones, result.is_seam);
     if(result.number_of_generators < 0)
     {
-      result.status = {false, "the cut and its shortest-path tree separate the faces (is the mesh connected?)"};
+      result.status = not_a_disk("the cut and its shortest-path tree separate the faces (is the mesh connected?)");
       return result;
     }
     if(result.number_of_generators != 2 * index.genus())
     {
-      result.status = {false, "tree-cotree found " + std::to_string(result.number_of_generators) +
+      result.status = not_a_disk("tree-cotree found " + std::to_string(result.number_of_generators) +
                                 " homology generators on a surface of genus " +
                                 std::to_string(index.genus()) + " (expected " +
-                                std::to_string(2 * index.genus()) + ")"};
+                                std::to_string(2 * index.genus()) + ")");
       return result;
     }
   }
@@ -662,7 +657,7 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
     if(result.is_seam[e])
     {
       ++result.number_of_seam_edges;
-      result.seam_length += surface_edge_length(index, e);
+      result.seam_length += edge_length(index, e);
     }
   result.status = check_cut_graph(index, result.is_seam, is_cone);
   return result;
@@ -678,13 +673,13 @@ inline Cut_graph_result cut_graph_from_seams(const internal::Mesh_index& index,
   Cut_graph_result result;
   result.is_seam = user_seams;
   result.status = check_cut_graph(index, user_seams, is_cone);
-  if(!result.status.ok)
+  if(!result.status.ok())
     return result;
   for(int e = 0; e < index.number_of_edges(); ++e)
     if(user_seams[e])
     {
       ++result.number_of_seam_edges;
-      result.seam_length += internal::cutting::surface_edge_length(index, e);
+      result.seam_length += internal::edge_length(index, e);
     }
   for(int v = 0; v < static_cast<int>(is_cone.size()); ++v)
     if(is_cone[v] && !index.is_boundary_vertex[v])
@@ -702,7 +697,7 @@ inline Cut_mesh cut_mesh(const internal::Mesh_index& index, const std::vector<ch
   using namespace internal::cutting;
   Cut_mesh cut;
   cut.status = check_cut_graph(index, is_seam);
-  if(!cut.status.ok)
+  if(!cut.status.ok())
     return cut;
 
   const Wedges wedges = cut_wedges(index, is_seam);
@@ -737,15 +732,15 @@ inline Cut_mesh cut_mesh(const internal::Mesh_index& index, const std::vector<ch
       cut.disk.edges[d] = {std::min(a, b), std::max(a, b)};
       cut.disk.edge_faces[d][is_seam[e] ? 0 : side] = f;
     }
-  const internal::Index_status built = internal::build_border(cut.disk);
+  const Status built = internal::build_border(cut.disk);
   if(!built.ok())
   {
-    cut.status = {false, "the cut surface is not a manifold: " + built.message};
+    cut.status = not_a_disk("the cut surface is not a manifold: " + built.message);
     return cut;
   }
   if(!cut.disk.is_disk())
   {
-    cut.status = {false, "the cut surface is not a disk: " + internal::describe_topology(cut.disk)};
+    cut.status = not_a_disk("the cut surface is not a disk: " + internal::describe_topology(cut.disk));
     return cut;
   }
   return cut;

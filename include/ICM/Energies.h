@@ -465,7 +465,10 @@ private:
     find_triangulation_wedges(t);
     placements_.clear();
     constexpr double eps = std::numeric_limits<double>::epsilon();
-    std::vector<double> error(nv, HUGE_VAL); // finite once placed
+    // As in `layout_by_propagation_from`: the estimate may overflow on a long strip, so
+    // "placed" is a flag of its own.
+    std::vector<double> error(nv, 0.0);
+    std::vector<char> placed(nv, 0);
     const int root = central_face(t);
     const std::array<int, 3>& r = wedges_[root];
     root_edge_ = t.face_edges[root][2];
@@ -475,6 +478,7 @@ private:
     error[r[0]] = error[r[1]] = eps * lengths_[root_edge_];
     place(t, root, 2);
     error[r[2]] = error[r[0]];
+    placed[r[0]] = placed[r[1]] = placed[r[2]] = 1;
 
     const Faces_around_vertices around(wedges_, nv);
     using Candidate = std::pair<double, std::pair<int, int>>; // (error of the third vertex, (face, corner))
@@ -487,7 +491,7 @@ private:
         for(int c = 0; c < 3; ++c)
         {
           const int a = w[(c + 1) % 3], b = w[(c + 2) % 3];
-          if(error[w[c]] < HUGE_VAL || error[a] == HUGE_VAL || error[b] == HUGE_VAL)
+          if(placed[w[c]] || !placed[a] || !placed[b])
             continue;
           const double l_ab = lengths_[t.face_edges[f][c]], l_ac = lengths_[t.face_edges[f][(c + 2) % 3]];
           queue.push({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {f, c}});
@@ -501,10 +505,11 @@ private:
       const auto [estimate, where] = queue.top();
       queue.pop();
       const int third = wedges_[where.first][where.second];
-      if(error[third] < HUGE_VAL)
+      if(placed[third])
         continue;
       place(t, where.first, where.second);
       error[third] = estimate;
+      placed[third] = 1;
       offer_faces_around(third);
     }
   }

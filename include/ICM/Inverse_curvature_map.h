@@ -12,6 +12,7 @@
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Dynamic_laplacian.h>
+#include <ICM/internal/Option_checks.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -42,6 +43,19 @@ struct Newton_options
   /// (horse: 100 steps of 1e-4 without converging). Converging runs end with full steps.
   int max_blocked_steps = 4;
 };
+
+/// Whether every field of `options` is in range (`ERROR_WRONG_PARAMETER` naming the first
+/// that is not); `prefix` names the struct inside its parent ("cones.newton.").
+inline Status check_options(const Newton_options& options, const std::string& prefix = "newton.")
+{
+  return internal::Option_checks(prefix)
+    .real("tolerance", options.tolerance, 0, false)
+    .at_least("max_iterations", options.max_iterations, 0)
+    .at_least("max_line_search_steps", options.max_line_search_steps, 1)
+    .real("max_step", options.max_step, 0, false)
+    .at_least("max_blocked_steps", options.max_blocked_steps, 1)
+    .status();
+}
 
 struct Newton_report
 {
@@ -90,6 +104,11 @@ public:
       return std::chrono::duration<double>(Clock::now() - t).count();
     };
     Newton_report report;
+    if(const Status checked = check_options(options); !checked.ok())
+    {
+      report.message = checked.message;
+      return report;
+    }
     const int n = laplacian_.size();
     Eigen::VectorXd residual(n), trial_residual(n), du(n), u_trial;
     int blocked_steps = 0;

@@ -13,33 +13,29 @@
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Curvature_space_optimizer.h>
+#include <ICM/Dynamic_laplacian.h>
 #include <ICM/Energies.h>
 #include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Vertex_scaling_metric.h>
-#include <ICM/Dynamic_laplacian.h>
 #include <ICM/Inverse_curvature_map.h>
+#include <ICM/Inversive_distance_metric.h>
 #include <ICM/Layout.h>
 #include <ICM/Optimal_metric.h>
+#include <ICM/Status.h>
+#include <ICM/Vertex_scaling_metric.h>
 #include <ICM/internal/Mesh_index.h>
-#include <ICM/parameterize.h>
+#include <ICM/internal/Option_checks.h>
 
 #include <CGAL/Default.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <CGAL/boost/graph/properties.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-namespace CGAL {
-// Declared only: Seam_mesh.h itself must come after the BGL header of the mesh under it.
-template <class TM, class SEM, class SVM>
-class Seam_mesh;
-} // namespace CGAL
 
 namespace ICM {
 
@@ -49,30 +45,6 @@ enum class Optimum_method
   Newton,              ///< Dirichlet problem u_S = u0_S, K(u)_N = 0 by Newton (default)
   Curvature_diffusion  ///< the paper's Algorithm 5 (slow; for validation)
 };
-
-/// How `Inverse_curvature_map_parameterizer_3` reads the seams of a `CGAL::Seam_mesh`.
-enum class Seam_reading
-{
-  /// The seams are border like any other (CGAL's reading): the disk's free-boundary
-  /// optimum, whose two sides of a seam need not match.
-  Border,
-  /// The seams are cuts of one surface (the mesh under the Seam_mesh): the metric is flat
-  /// across them, both sides of a seam get one length, and the seams' ends and branch
-  /// points are the cones, their angles left to the optimum (`ICM::parameterize` with the
-  /// seams as the user's cut).
-  Cut
-};
-
-namespace internal {
-
-template <class TriangleMesh>
-struct Is_seam_mesh : std::false_type
-{};
-template <class TM, class SeamEdgeMap, class SeamVertexMap>
-struct Is_seam_mesh<CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>> : std::true_type
-{};
-
-} // namespace internal
 
 /// Options of `Inverse_curvature_map_parameterizer_3`.
 struct Parameterization_options
@@ -93,11 +65,24 @@ struct Parameterization_options
   bool fall_back_to_circle_packing = true;
   /// Called at the start of each stage with its name ("index", "metric", "optimum", "layout").
   std::function<void(const std::string&)> progress;
-  /// On a `CGAL::Seam_mesh`: its seams as free border (default) or as cuts of one surface.
-  Seam_reading seams = Seam_reading::Border;
   /// The optimizer of an `Energy` other than the entropy (started from the entropy optimum).
   Curvature_space_options energy;
 };
+
+/// Whether every field of `options` is in range (`ERROR_WRONG_PARAMETER` naming the first
+/// that is not).
+inline Status check_options(const Parameterization_options& options)
+{
+  return internal::Option_checks()
+    .nested(check_options(options.newton))
+    .nested(check_options(options.diffusion))
+    .one_of("optimum", options.optimum, 2)
+    .one_of("layout", options.layout, 3)
+    .at_least("harmonic_layout_min_faces", options.harmonic_layout_min_faces, 0)
+    .real("max_layout_length_error", options.max_layout_length_error, 0, false)
+    .nested(check_options(options.energy))
+    .status();
+}
 
 /// What the last `parameterize()` did: sizes, topology, convergence, timings, the reason of
 /// any failure.
@@ -153,7 +138,9 @@ struct Parameterization_report
 ///
 /// Model of CGAL's `Parameterizer_3`. The input is the connected component of the border
 /// halfedge `bhd`; it must be a topological disk (one border, genus 0): a `CGAL::Seam_mesh`
-/// whose seams cut a surface into a disk qualifies. Every boundary vertex is singular (free
+/// whose seams cut a surface into a disk qualifies, its seams read as border (CGAL's reading;
+/// `ICM::parameterize` on the seam mesh reads them as cuts of one surface). Every boundary
+/// vertex is singular (free
 /// boundary) and every interior vertex flat; the result is the minimum of the curvature
 /// entropy in the conformal class of `Metric`, laid out isometrically. Another
 /// `BorderCondition` prescribes the border instead (a rectangle, a circle, given turning
@@ -232,13 +219,18 @@ public:
     stage("index");
     if(faces(mesh).empty())
       return run.fail(ERROR_EMPTY_MESH, "the mesh has no faces");
+    if(const Status checked = check_options(options_); !checked.ok())
+      return run.fail(checked.code, checked.message);
     if(bhd == boost::graph_traits<TriangleMesh>::null_halfedge())
       return run.fail(ERROR_WRONG_PARAMETER, "no border halfedge given");
+    const auto mesh_halfedges = halfedges(mesh);
+    if(std::find(mesh_halfedges.begin(), mesh_halfedges.end(), bhd) == mesh_halfedges.end())
+      return run.fail(ERROR_WRONG_PARAMETER, "the border halfedge given is not a halfedge of this mesh");
     if(!is_border(bhd, mesh))
       return run.fail(ERROR_WRONG_PARAMETER, "the halfedge given is not on a border");
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
-    const internal::Index_status indexed =
+    const Status indexed =
       internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh),
                            index, vertices);
     run.report_topology(index);
@@ -250,17 +242,6 @@ public:
     Border_target border;
     if(const Error_code refused = border_target(mesh, bhd, index, vertices, vimap, border); refused != OK)
       return run.fail(refused, border.message);
-    if constexpr(internal::Is_seam_mesh<TriangleMesh>::value)
-      if(options_.seams == Seam_reading::Cut)
-      {
-        if(border.prescribes_border())
-          return run.fail(ERROR_WRONG_PARAMETER, "the border condition \"" + border_.name() +
-                                                   "\" is not available with Seam_reading::Cut: only \"free\"");
-        if(optimizes_energy)
-          return run.fail(ERROR_WRONG_PARAMETER, std::string("the energy \"") + energy_name<Energy>() +
-                                                   "\" is not available with Seam_reading::Cut (cones): only the entropy");
-        return parameterize_cut_surface(mesh, uvmap, vpmap, run);
-      }
 
     // Steps 1-7 in the class of `Metric`, then in the circle packing's if it cannot get there.
     std::vector<Uv> uv;
@@ -326,56 +307,6 @@ private:
       return ERROR_WRONG_PARAMETER;
     }
     return OK;
-  }
-
-  /// `Seam_reading::Cut`: the surface under the seam mesh, cut along its seams and nothing
-  /// else, by `ICM::parameterize`; each seam-mesh vertex takes the UV of its corners. Every
-  /// component of the underlying mesh is parameterized (a Seam_mesh offers no way to
-  /// restrict it to one), each at its own place in the plane.
-  template <class VertexUVMap, class VertexParameterizedMap>
-  Error_code parameterize_cut_surface(TriangleMesh& mesh, VertexUVMap uvmap, VertexParameterizedMap vpmap, Run& run)
-  {
-    using Surface = std::decay_t<decltype(mesh.mesh())>;
-    using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
-    const Surface& surface = mesh.mesh();
-    std::vector<typename boost::graph_traits<Surface>::edge_descriptor> seams;
-    for(auto e : edges(surface))
-      if(mesh.has_on_seam(e))
-        seams.push_back(e);
-    Surface_parameterization_options options;
-    options.automatic_cones = false; // a cone off the seams would need a cut the mesh has not
-    options.remove_overlaps = false; // a cut of its own would split seam-mesh vertices
-    options.newton = options_.newton;
-    options.fall_back_to_circle_packing = options_.fall_back_to_circle_packing;
-    auto corner_uv = get(CGAL::dynamic_halfedge_property_t<Uv_point>(), surface);
-    stage("optimum");
-    const Surface_parameterization_report surface_report =
-      ICM::parameterize<Metric, Solver>(surface, corner_uv, options, {}, nullptr, seams);
-    Parameterization_report& report = run.report;
-    report.seconds_optimum = surface_report.seconds_cones + surface_report.seconds_optimum;
-    report.seconds_layout = surface_report.seconds_cut + surface_report.seconds_layout;
-    for(const Chart_report& chart : surface_report.charts)
-    {
-      report.metric = chart.metric;
-      if(report.fallback_reason.empty())
-        report.fallback_reason = chart.fallback_reason;
-      report.newton_iterations = std::max(report.newton_iterations, chart.newton_iterations);
-      report.max_curvature_error = std::max(report.max_curvature_error, chart.max_curvature_error);
-      report.max_layout_length_error = std::max(report.max_layout_length_error, chart.max_layout_length_error);
-      report.flipped_faces += chart.flipped_faces;
-      report.moved_vertices += chart.moved_vertices;
-      report.overlapping_border_edges += chart.overlapping_border_edges;
-    }
-    report.layout = "propagation";
-    if(surface_report.status != CGAL::Surface_mesh_parameterization::OK)
-      return run.fail(surface_report.status, surface_report.message);
-    for(auto f : faces(mesh))
-      for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
-      {
-        put(uvmap, target(h, mesh), get(corner_uv, h.tmhd));
-        put(vpmap, target(h, mesh), true);
-      }
-    return run.succeed();
   }
 
   /// The clock and the report of one `parameterize()` call.

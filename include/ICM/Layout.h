@@ -121,8 +121,12 @@ inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& in
   const std::vector<int>&first = around.first, &ring = around.faces;
 
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  std::vector<double> error(nv, HUGE_VAL); // finite once placed
-  auto placed = [&](int v) { return error[v] < HUGE_VAL; };
+  // The estimate only orders the candidates: it grows geometrically with the hops from the
+  // root and may overflow to infinity on a long strip, so "placed" is a flag of its own;
+  // each (face, corner) is then offered at most once and the queue holds at most 3 F.
+  std::vector<double> error(nv, 0.0);
+  std::vector<char> is_placed(nv, 0);
+  auto placed = [&](int v) { return is_placed[v] != 0; };
   {
     const auto& v = index.faces[root];
     const auto& e = index.face_edges[root];
@@ -131,7 +135,10 @@ inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& in
     uv[v[1]] = {l01, 0.0};
     uv[v[2]] = {l02 * std::cos(theta0), l02 * std::sin(theta0)};
     for(int c = 0; c < 3; ++c)
+    {
       error[v[c]] = eps * std::max(l01, l02);
+      is_placed[v[c]] = 1;
+    }
   }
   // Candidates: (estimated error of the third vertex, face, corner of that vertex).
   using Candidate = std::pair<double, std::pair<int, int>>;
@@ -169,6 +176,7 @@ inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& in
     const double cs = std::cos(theta) * scale, sn = std::sin(theta) * scale;
     uv[third] = {uv[a][0] + cs * dx - sn * dy, uv[a][1] + sn * dx + cs * dy};
     error[third] = estimate;
+    is_placed[third] = 1;
     offer_faces_around(third);
   }
   return uv;

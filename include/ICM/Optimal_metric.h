@@ -12,6 +12,7 @@
 #include <ICM/Circle_packing_metric.h>
 #include <ICM/Curvature_map.h>
 #include <ICM/Inverse_curvature_map.h>
+#include <ICM/internal/Option_checks.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -63,6 +64,16 @@ struct Diffusion_options
   double step_fraction = 0.95;
 };
 
+/// Whether every field of `options` is in range (see `check_options(const Newton_options&)`).
+inline Status check_options(const Diffusion_options& options, const std::string& prefix = "diffusion.")
+{
+  return internal::Option_checks(prefix)
+    .real("tolerance", options.tolerance, 0, false)
+    .at_least("max_iterations", options.max_iterations, 0)
+    .real("step_fraction", options.step_fraction, 0, false, 1, true)
+    .status();
+}
+
 struct Diffusion_report
 {
   bool converged = false;
@@ -82,6 +93,11 @@ Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& i
                                                    const Diffusion_options& options = Diffusion_options())
 {
   Diffusion_report report;
+  if(const Status checked = check_options(options); !checked.ok())
+  {
+    report.message = checked.message;
+    return report;
+  }
   Curvature_map<Metric> curvature(index, metric);
   const int nv = index.number_of_vertices();
   u = metric.u0;

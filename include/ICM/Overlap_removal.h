@@ -46,21 +46,25 @@ struct Overlap_removal
 namespace internal {
 namespace overlaps {
 
+/// Capacities are integers: Boost's push-relabel checks its flow with exact equalities
+/// (`is_flow()`, asserted in any build without NDEBUG), which floating-point sums of edge
+/// lengths fail by rounding.
+using Capacity = long long;
 using Flow_traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
 using Flow_graph = boost::adjacency_list<
   boost::vecS, boost::vecS, boost::directedS, boost::no_property,
-  boost::property<boost::edge_capacity_t, double,
-                  boost::property<boost::edge_residual_capacity_t, double,
+  boost::property<boost::edge_capacity_t, Capacity,
+                  boost::property<boost::edge_residual_capacity_t, Capacity,
                                   boost::property<boost::edge_reverse_t, Flow_traits::edge_descriptor>>>>;
 
 /// An arc a -> b of capacity `capacity`, with the zero-capacity reverse arc Boost's
 /// push-relabel keeps its residual flow on.
-inline void add_arc(Flow_graph& g, int a, int b, double capacity)
+inline void add_arc(Flow_graph& g, int a, int b, Capacity capacity)
 {
   const auto e = boost::add_edge(a, b, g).first;
   const auto r = boost::add_edge(b, a, g).first;
   boost::put(boost::edge_capacity, g, e, capacity);
-  boost::put(boost::edge_capacity, g, r, 0.0);
+  boost::put(boost::edge_capacity, g, r, Capacity(0));
   boost::put(boost::edge_reverse, g, e, r);
   boost::put(boost::edge_reverse, g, r, e);
 }
@@ -77,19 +81,28 @@ inline std::vector<int> source_side_of_minimum_cut(const Mesh_index& disk, const
   for(std::size_t i = 0; i < piece_faces.size(); ++i)
     node_of_face[piece_faces[i]] = static_cast<int>(i);
   const int n = static_cast<int>(piece_faces.size()), s = n, t = n + 1;
-  Flow_graph g(n + 2);
+  std::vector<int> dual_edges;
   double total = 0;
   for(int e = 0; e < disk.number_of_edges(); ++e)
   {
     const int f = disk.edge_faces[e][0], h = disk.edge_faces[e][1];
     if(h < 0 || piece_of_face[f] != piece || piece_of_face[h] != piece)
       continue;
-    const double length = std::sqrt(squared_distance(disk.points[disk.edges[e][0]], disk.points[disk.edges[e][1]]));
-    add_arc(g, node_of_face[f], node_of_face[h], length);
-    add_arc(g, node_of_face[h], node_of_face[f], length);
-    total += length;
+    dual_edges.push_back(e);
+    total += edge_length(disk, e);
   }
-  const double unlimited = 2 * total + 1;
+  // Lengths in units of 2^-40 of their sum: any cut is then at most 2^40 units, and the
+  // preflow's excess (every source arc saturated) stays below 2^62 for up to 2^20 sources.
+  const double unit = total > 0 ? std::ldexp(1.0, -40) * total : 1.0;
+  Flow_graph g(n + 2);
+  for(int e : dual_edges)
+  {
+    const int f = node_of_face[disk.edge_faces[e][0]], h = node_of_face[disk.edge_faces[e][1]];
+    const Capacity length = std::llround(edge_length(disk, e) / unit);
+    add_arc(g, f, h, length);
+    add_arc(g, h, f, length);
+  }
+  const Capacity unlimited = (Capacity(1) << 41) + 1;
   for(int f : sources)
     add_arc(g, s, node_of_face[f], unlimited);
   for(int f : sinks)
@@ -108,7 +121,7 @@ inline std::vector<int> source_side_of_minimum_cut(const Mesh_index& disk, const
     for(auto arc : boost::make_iterator_range(boost::out_edges(a, g)))
     {
       const int b = static_cast<int>(boost::target(arc, g));
-      if(!reached[b] && residual[arc] > 1e-12 * unlimited)
+      if(!reached[b] && residual[arc] > 0)
       {
         reached[b] = 1;
         stack.push_back(b);
@@ -283,10 +296,10 @@ inline Overlap_removal remove_overlaps(const internal::Mesh_index& surface, Cut_
       }
       split.disk.faces[f][c] = it->second;
     }
-  const Index_status built = build_connectivity(split.disk);
+  const Status built = build_connectivity(split.disk);
   split.status = cut.status;
   if(!built.ok())
-    split.status = {false, "the pieces of an overlapping chart: " + built.message};
+    split.status = built.within("the pieces of an overlapping chart: ");
 
   // Disk edges keep their surface edge; a surface edge has two disk edges on every seam.
   split.surface_edge.assign(split.disk.number_of_edges(), -1);

@@ -19,6 +19,7 @@
 #include <ICM/Curvature_map.h>
 #include <ICM/Inverse_curvature_map.h>
 #include <ICM/Optimal_metric.h>
+#include <ICM/internal/Option_checks.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -87,6 +88,16 @@ struct Cone_options
   Newton_options newton;
 };
 
+/// Whether every field of `options` is in range (see `check_options(const Newton_options&)`).
+inline Status check_options(const Cone_options& options, const std::string& prefix = "cones.")
+{
+  return internal::Option_checks(prefix)
+    .real("max_log_scale", options.max_log_scale, 0, false)
+    .at_least("max_cones", options.max_cones, 0)
+    .nested(check_options(options.newton, prefix + "newton."))
+    .status();
+}
+
 /// What `greedy_cones` chose and how the distortion fell.
 struct Cone_selection
 {
@@ -107,6 +118,11 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
 {
   const int nv = index.number_of_vertices();
   Cone_selection selection;
+  if(const Status checked = check_options(options); !checked.ok())
+  {
+    selection.message = checked.message;
+    return selection;
+  }
   std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
   for(int v : seeds)
     if(!is_singular[v])

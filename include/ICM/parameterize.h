@@ -28,7 +28,9 @@
 #include <ICM/Layout.h>
 #include <ICM/Overlap_removal.h>
 #include <ICM/Singular_vertices.h>
+#include <ICM/Status.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Option_checks.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
@@ -43,37 +45,13 @@
 #include <type_traits>
 #include <vector>
 
+namespace CGAL {
+// Declared only: Seam_mesh.h itself must come after the BGL header of the mesh under it.
+template <class TM, class SEM, class SVM>
+class Seam_mesh;
+} // namespace CGAL
+
 namespace ICM {
-
-/// The status of a report before its first run. CGAL's `Error_code` has no such value: this
-/// one lies after its last code and inside the range the enumeration can hold (its values
-/// take 4 bits, so 0 to 15 are valid), so no CGAL code is ever mistaken for it.
-constexpr CGAL::Surface_mesh_parameterization::Error_code NOT_RUN =
-  static_cast<CGAL::Surface_mesh_parameterization::Error_code>(15);
-
-/// The text of an `Error_code` (and "not run" for `NOT_RUN`). CGAL 5.5.1's `get_error_message()` skips
-/// `ERROR_NO_TOPOLOGICAL_BALL`, so from there on it returns the next code's text and a null
-/// pointer for `ERROR_WRONG_PARAMETER`.
-inline const char* error_message(CGAL::Surface_mesh_parameterization::Error_code code)
-{
-  using namespace CGAL::Surface_mesh_parameterization;
-  switch(code)
-  {
-  case OK: return "Success";
-  case ERROR_EMPTY_MESH: return "Input mesh is empty";
-  case ERROR_NON_TRIANGULAR_MESH: return "Input mesh is not triangular";
-  case ERROR_NO_TOPOLOGICAL_DISC: return "Input mesh is not a topological disc";
-  case ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
-  case ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
-  case ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
-  case ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
-  case ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
-  case ERROR_WRONG_PARAMETER: return "Invalid input";
-  }
-  if(code == NOT_RUN)
-    return "not run";
-  return "Unknown error";
-}
 
 /// Options of `ICM::parameterize`.
 struct Surface_parameterization_options
@@ -114,6 +92,20 @@ struct Surface_parameterization_options
   /// For a progress line on long runs; it must not throw.
   std::function<void(const std::string& stage, double fraction)> progress;
 };
+
+/// Whether every field of `options` is in range (`ERROR_WRONG_PARAMETER` naming the first
+/// that is not).
+inline Status check_options(const Surface_parameterization_options& options)
+{
+  return internal::Option_checks()
+    .nested(check_options(options.cones))
+    .at_least("initial_cones", options.initial_cones, 0)
+    .real("border_max_log_scale", options.border_max_log_scale, 0, true)
+    .nested(check_options(options.newton))
+    .nested(check_options(options.energy))
+    .real("max_layout_length_error", options.max_layout_length_error, 0, false)
+    .status();
+}
 
 /// What `ICM::parameterize` did to one connected component.
 struct Chart_report
@@ -198,6 +190,44 @@ struct Stage_progress
       (*callback)(stage, start + span * within);
   }
 };
+
+/// Whether the user's cones are interior vertices of `mesh` with a positive angle (or a free
+/// one), and the user's seams edges of `mesh` off its border. Membership is found by
+/// comparison only: a null, foreign or stale descriptor is refused, never dereferenced.
+template <class TriangleMesh>
+Status check_user_cones_and_seams(
+  const TriangleMesh& mesh,
+  const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones,
+  const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams)
+{
+  std::size_t cones_in_mesh = 0;
+  for(auto v : vertices(mesh))
+    cones_in_mesh += user_cones.count(v);
+  if(cones_in_mesh != user_cones.size())
+    return Status::wrong_parameter(user_cones.count(boost::graph_traits<TriangleMesh>::null_vertex())
+                                     ? "a user cone is the null vertex"
+                                     : "a user cone is not a vertex of this mesh");
+  for(const auto& [v, curvature] : user_cones)
+  {
+    if(is_border(v, mesh))
+      return Status::wrong_parameter("a user cone is a boundary vertex (border vertices are singular already; "
+                                     "prescribe interior cones only)");
+    if(!std::isnan(curvature) && !(curvature < 2 * M_PI))
+      return Status::wrong_parameter("a user cone angle must be positive (curvature " + std::to_string(curvature) +
+                                     " >= 2 pi)");
+  }
+  if(user_seams.empty())
+    return Status::success();
+  const auto mesh_halfedges = sorted_halfedges(mesh);
+  for(auto e : user_seams)
+  {
+    if(!std::binary_search(mesh_halfedges.begin(), mesh_halfedges.end(), halfedge(e, mesh)))
+      return Status::wrong_parameter("a user seam is not an edge of this mesh (or is the null edge)");
+    if(is_border(e, mesh))
+      return Status::wrong_parameter("a user seam is a border edge (the border is cut already)");
+  }
+  return Status::success();
+}
 
 /// The metric of class `Metric` for `index`; a metric that flips its own triangulation keeps
 /// `fixed_edges` (the seams) as edges.
@@ -373,14 +403,15 @@ inline std::vector<Seam_twin> seam_twins(const Mesh_index& index, const Cut_mesh
 }
 
 /// The optimum in the class of `Metric` for the singular set and its layout on `cut`,
-/// checked: steps 5 and 7 of one component. Returns the failure reason, or empty.
+/// checked: steps 5 and 7 of one component.
 template <class Metric, class Solver, class Energy>
-std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_seam,
+Status optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_seam,
                                const std::vector<char>& is_singular, const std::vector<double>& prescribed,
                                const Cut_mesh& cut, const Surface_parameterization_options& options,
                                Surface_parameterization_report& report, Chart_report& chart,
                                std::vector<Uv>& uv, const Energy& energy)
 {
+  using namespace CGAL::Surface_mesh_parameterization;
   using Clock = std::chrono::steady_clock;
   auto seconds_since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -396,7 +427,7 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
   chart.energy_message = optimum.energy.message;
   report.seconds_optimum += seconds_since(t);
   if(!optimum.newton.converged)
-    return optimum.newton.message;
+    return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, optimum.newton.message);
   const Eigen::VectorXd& k = optimum.k;
   for(int v = 0; v < nv; ++v)
     if(is_singular[v] && !index.is_boundary_vertex[v])
@@ -416,7 +447,7 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
   {
     intrinsic_cut = cut_mesh(optimum.triangulation, is_seam);
     if(!intrinsic_cut.ok())
-      return "the intrinsic triangulation: " + intrinsic_cut.status.message;
+      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, "the intrinsic triangulation: " + intrinsic_cut.status.message);
   }
   const Cut_mesh& laid = optimum.has_triangulation ? intrinsic_cut : cut;
   std::vector<double> disk_lengths(laid.disk.number_of_edges());
@@ -429,7 +460,7 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
   {
     const std::vector<int> match = match_wedges(index, cut, optimum.triangulation, intrinsic_cut, is_seam);
     if(match.empty())
-      return "the wedges of the intrinsic triangulation do not match the mesh's";
+      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, "the wedges of the intrinsic triangulation do not match the mesh's");
     std::vector<Uv> intrinsic_uv;
     intrinsic_uv.swap(uv);
     uv.resize(match.size());
@@ -458,25 +489,25 @@ std::string optimum_and_layout(const Mesh_index& index, const std::vector<char>&
     chart.overlapping_border_edges = count_border_overlaps(cut.disk, uv).crossing_pairs;
   report.seconds_layout += seconds_since(t);
   if(!finite || chart.flipped_faces > 0)
-    return std::to_string(chart.flipped_faces) + " faces are flipped in the layout";
+    return Status::failure(ERROR_NO_1_TO_1_MAPPING, std::to_string(chart.flipped_faces) + " faces are flipped in the layout");
   if(!(check.max_relative_length_error <= options.max_layout_length_error))
-    return "the layout does not reproduce the metric (relative edge length error " +
-           std::to_string(check.max_relative_length_error) + ")";
-  return {};
+    return Status::failure(ERROR_NO_1_TO_1_MAPPING, "the layout does not reproduce the metric (relative edge length error " +
+                                                      std::to_string(check.max_relative_length_error) + ")");
+  return Status::success();
 }
 
 /// One component: cones, optimum, cut, layout, checks. `uv` receives one UV per wedge of
 /// `cut.disk`. `user_seams` (per edge; empty: none) are taken as the cut as given, their ends
-/// and branch points singular with a free angle, and no cone is added. Returns the failure
-/// reason, or empty.
+/// and branch points singular with a free angle, and no cone is added.
 template <class Metric, class Solver, class Energy>
-std::string parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
+Status parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
                                    const std::vector<double>& prescribed, const std::vector<char>& user_seams,
                                    const Surface_parameterization_options& options,
                                    Surface_parameterization_report& report, Chart_report& chart,
                                    Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy,
                                    const Stage_progress& progress = Stage_progress())
 {
+  using namespace CGAL::Surface_mesh_parameterization;
   using Clock = std::chrono::steady_clock;
   auto seconds_since = [](Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
@@ -504,8 +535,8 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
       if(is_user_cone[v])
         sum += prescribed[v];
     if(std::abs(sum - 2 * M_PI * chi) > 1e-6)
-      return "the cone curvatures sum to " + std::to_string(sum) + ", Gauss-Bonnet needs 2 pi chi = " +
-             std::to_string(2 * M_PI * chi) + " (chi = " + std::to_string(chi) + ")";
+      return Status::wrong_parameter("the cone curvatures sum to " + std::to_string(sum) + ", Gauss-Bonnet needs 2 pi chi = " +
+             std::to_string(2 * M_PI * chi) + " (chi = " + std::to_string(chi) + ")");
   }
   const bool has_user_seams = !user_seams.empty();
   if(has_user_seams)
@@ -571,13 +602,13 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
       if(!selection.ok() && options.fall_back_to_circle_packing)
         selection = greedy_cones<Solver>(index, packing, seeds, options.cones);
       if(!selection.ok())
-        return selection.message;
+        return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, selection.message);
       for(int v : selection.cones)
         is_singular[v] = 1;
     }
   }
   if(closed && chi > 0 && std::count(is_singular.begin(), is_singular.end(), 1) < 2)
-    return "a closed genus-0 surface needs at least two cones (automatic cones are off)";
+    return Status::wrong_parameter("a closed genus-0 surface needs at least two cones (automatic cones are off)");
   report.seconds_cones += seconds_since(t);
 
   // The cut: through every interior singular vertex that will carry curvature (the one
@@ -597,38 +628,38 @@ std::string parameterize_component(const Mesh_index& index, const std::vector<ch
   const Cut_graph_result graph =
     has_user_seams ? cut_graph_from_seams(index, user_seams, is_cone) : cut_graph(index, is_cone);
   if(!graph.ok())
-    return graph.status.message;
+    return graph.status;
   chart.seam_edges = graph.number_of_seam_edges;
   chart.homology_generators = graph.number_of_generators;
   cut = cut_mesh(index, graph.is_seam);
   if(!cut.ok())
-    return cut.status.message;
+    return cut.status;
   report.seconds_cut += seconds_since(t);
 
   // On the surface: the optimum in the class of `Metric`; on the cut: its layout. If either
   // fails, both again in the class of the circle packing, from the chart as it was.
   progress("optimum", 0.4);
   const Chart_report before_optimum = chart;
-  std::string failure =
+  Status failure =
     optimum_and_layout<Metric, Solver>(index, graph.is_seam, is_singular, prescribed, cut, options,
                                        report, chart, uv, energy);
-  if(!failure.empty() && !std::is_same<Metric, Circle_packing_metric>::value &&
+  if(!failure.ok() && !std::is_same<Metric, Circle_packing_metric>::value &&
      options.fall_back_to_circle_packing)
   {
-    const std::string reason = std::string(Metric::name) + ": " + failure;
+    const std::string reason = std::string(Metric::name) + ": " + failure.message;
     chart = before_optimum;
     failure = optimum_and_layout<Circle_packing_metric, Solver>(index, graph.is_seam, is_singular, prescribed,
                                                                 cut, options, report, chart, uv, energy);
     chart.fallback_reason = reason;
   }
   chart.raw_overlapping_border_edges = chart.overlapping_border_edges;
-  if(failure.empty() && options.remove_overlaps && chart.overlapping_border_edges > 0)
+  if(failure.ok() && options.remove_overlaps && chart.overlapping_border_edges > 0)
   {
     progress("overlaps", 0.9);
     t = Clock::now();
     const Overlap_removal removal = remove_overlaps(index, cut, uv);
     if(!cut.ok())
-      return cut.status.message;
+      return cut.status;
     chart.pieces = removal.pieces;
     chart.overlap_cut_edges = removal.cut_edges;
     chart.seam_edges += removal.cut_edges;
@@ -698,8 +729,12 @@ Surface_parameterization_report parameterize(
     report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
     return report;
   };
+  if(const Status checked = check_options(options); !checked.ok())
+    return finish(checked.code, checked.message);
   if(faces(mesh).empty())
     return finish(ERROR_EMPTY_MESH, "the mesh has no faces");
+  if(const Status checked = internal::check_user_cones_and_seams(mesh, user_cones, user_seams); !checked.ok())
+    return finish(checked.code, checked.message);
 
   // Components, each with a seed face.
   auto component_of = get(CGAL::dynamic_face_property_t<std::size_t>(), mesh);
@@ -709,27 +744,11 @@ Surface_parameterization_report parameterize(
     if(seeds[get(component_of, f)] == boost::graph_traits<TriangleMesh>::null_face())
       seeds[get(component_of, f)] = f;
 
-  for(const auto& [v, curvature] : user_cones)
-  {
-    if(v == boost::graph_traits<TriangleMesh>::null_vertex())
-      return finish(ERROR_WRONG_PARAMETER, "a user cone is the null vertex");
-    if(is_border(v, mesh))
-      return finish(ERROR_WRONG_PARAMETER, "a user cone is a boundary vertex (border vertices are "
-                                           "singular already; prescribe interior cones only)");
-    if(!std::isnan(curvature) && !(curvature < 2 * M_PI))
-      return finish(ERROR_WRONG_PARAMETER, "a user cone angle must be positive (curvature " +
-                                             std::to_string(curvature) + " >= 2 pi)");
-  }
-
   auto is_user_seam = get(CGAL::dynamic_edge_property_t<bool>(), mesh);
   for(auto e : edges(mesh))
     put(is_user_seam, e, false);
   for(auto e : user_seams)
-  {
-    if(is_border(e, mesh))
-      return finish(ERROR_WRONG_PARAMETER, "a user seam is a border edge (the border is cut already)");
     put(is_user_seam, e, true);
-  }
 
   // One frame for every component, so that the charts are packed in common units; the UVs
   // go back to the mesh's units when written.
@@ -760,7 +779,7 @@ Surface_parameterization_report parameterize(
     faces_done += static_cast<double>(component_faces[c]);
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
-    const internal::Index_status indexed = internal::index_mesh(
+    const Status indexed = internal::index_mesh(
       mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices, &chart_faces[c], &normalisation);
     Chart_report chart;
     chart.vertices = index.number_of_vertices();
@@ -790,18 +809,15 @@ Surface_parameterization_report parameterize(
       if(std::find(component_seams.begin(), component_seams.end(), 1) == component_seams.end())
         component_seams.clear();
     }
-    const std::string failure = internal::parameterize_component<Metric, Solver>(
+    const Status failure = internal::parameterize_component<Metric, Solver>(
       index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c], energy,
       progress);
     report.charts.push_back(chart);
-    if(!failure.empty())
-      return finish(failure.find("flipped") != std::string::npos ||
-                        failure.find("reproduce") != std::string::npos
-                      ? ERROR_NO_1_TO_1_MAPPING
-                      : ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
+    if(!failure.ok())
+      return finish(failure.code,
                     "component " + std::to_string(c) + " (" + std::to_string(chart.vertices) +
                       " vertices, genus " + std::to_string(chart.genus) + ", " +
-                      std::to_string(chart.boundary_loops) + " boundary loops): " + failure);
+                      std::to_string(chart.boundary_loops) + " boundary loops): " + failure.message);
     if(seam_edges)
       for(int e = 0; e < index.number_of_edges(); ++e)
         if(cuts[c].disk_edges[e][1] >= 0)
@@ -848,6 +864,48 @@ Surface_parameterization_report parameterize(
   if(options.progress)
     options.progress("done", 1.0);
   return finish(OK, "");
+}
+
+/// \brief Parameterizes the surface under a `CGAL::Seam_mesh`, cut along its seams and nothing
+/// else: the metric is flat across every seam, both sides of a seam get one length and fit
+/// together by a rigid motion, and the seams' ends and branch points are the cones, their
+/// angles chosen by the optimum (the seams are `user_seams` of the overload above). CGAL's
+/// `parameterize()` with `Inverse_curvature_map_parameterizer_3` reads the same seams as free
+/// border instead, whose two sides need not fit.
+///
+/// Every component of the underlying mesh is parameterized (a `Seam_mesh` offers no way to
+/// restrict it to one), each at its own place in the plane. The seams are the whole cut:
+/// `options.automatic_cones` and `options.remove_overlaps` do not apply (a cone off the seams,
+/// or a cut of the overlap removal, would need seams the seam mesh does not have).
+///
+/// \tparam VertexUVMap a writable property map from the seam mesh's `vertex_descriptor` (one
+///         per side of a seam) to a 2D point, as CGAL's `parameterize()` takes
+/// \returns as the overload above
+template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class Energy_ = CGAL::Default,
+          class TriangleMesh, class SeamEdgeMap, class SeamVertexMap, class VertexUVMap>
+Surface_parameterization_report parameterize(
+  const CGAL::Seam_mesh<TriangleMesh, SeamEdgeMap, SeamVertexMap>& seam_mesh, VertexUVMap uv_map,
+  const Surface_parameterization_options& options = Surface_parameterization_options(),
+  const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
+    typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
+{
+  using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
+  const TriangleMesh& surface = seam_mesh.mesh();
+  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor> seams;
+  for(auto e : edges(surface))
+    if(seam_mesh.has_on_seam(e))
+      seams.push_back(e);
+  Surface_parameterization_options along_seams = options;
+  along_seams.automatic_cones = false;
+  along_seams.remove_overlaps = false;
+  auto corner_uv = get(CGAL::dynamic_halfedge_property_t<Uv_point>(), surface);
+  const Surface_parameterization_report report =
+    parameterize<Metric_, SparseSolver, Energy_>(surface, corner_uv, along_seams, {}, nullptr, seams, energy);
+  if(report.status == CGAL::Surface_mesh_parameterization::OK)
+    for(auto f : faces(seam_mesh))
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, seam_mesh), seam_mesh))
+        put(uv_map, target(h, seam_mesh), get(corner_uv, h.tmhd));
+  return report;
 }
 
 } // namespace ICM

@@ -43,7 +43,7 @@ inline std::vector<double> euclidean_edge_lengths(const Mesh_index& index)
 {
   std::vector<double> lengths(index.number_of_edges());
   for(int e = 0; e < index.number_of_edges(); ++e)
-    lengths[e] = std::sqrt(squared_distance(index.points[index.edges[e][0]], index.points[index.edges[e][1]]));
+    lengths[e] = edge_length(index, e);
   return lengths;
 }
 

@@ -6,6 +6,7 @@
 #ifndef ICM_INTERNAL_MESH_INDEX_H
 #define ICM_INTERNAL_MESH_INDEX_H
 
+#include <ICM/Status.h>
 #include <ICM/internal/Unit_frame.h>
 
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
@@ -70,14 +71,6 @@ struct Mesh_index
   bool is_disk() const { return number_of_boundary_loops() == 1 && genus() == 0; }
 };
 
-/// Outcome of indexing: CGAL's error code and the human reason.
-struct Index_status
-{
-  CGAL::Surface_mesh_parameterization::Error_code code = CGAL::Surface_mesh_parameterization::OK;
-  std::string message;
-  bool ok() const { return code == CGAL::Surface_mesh_parameterization::OK; }
-};
-
 /// "3 boundary loops, genus 0" — the phrase every topology error uses.
 inline std::string describe_topology(const Mesh_index& index)
 {
@@ -102,10 +95,29 @@ inline double squared_distance(const std::array<double, 3>& a, const std::array<
   return dx * dx + dy * dy + dz * dz;
 }
 
+/// The halfedges of `mesh`, sorted: whether a descriptor belongs to the mesh is then found
+/// by comparisons alone, never by dereferencing one that may be foreign or stale.
+template <class TriangleMesh>
+std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> sorted_halfedges(
+  const TriangleMesh& mesh)
+{
+  std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> all;
+  for(auto h : halfedges(mesh))
+    all.push_back(h);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+/// The 3D length of edge `e` (normalised units).
+inline double edge_length(const Mesh_index& index, int e)
+{
+  return std::sqrt(squared_distance(index.points[index.edges[e][0]], index.points[index.edges[e][1]]));
+}
+
 /// Boundary flags and loops from faces, edges and edge-face incidence; fails on a vertex
 /// whose faces form more than one fan. Edges are told apart by id, not by their endpoints,
 /// so this also serves a triangulation with two edges between the same vertices.
-inline Index_status build_border(Mesh_index& index)
+inline Status build_border(Mesh_index& index)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   const int nv = index.number_of_vertices();
@@ -165,7 +177,7 @@ inline Index_status build_border(Mesh_index& index)
 /// Builds edges, edge-face incidence, boundary flags and loops from `index.faces`.
 /// Edges come from sorting the corner pairs, so nothing here depends on the graph type.
 /// Fails on a non-manifold edge or vertex, which a halfedge graph can still encode at vertices.
-inline Index_status build_connectivity(Mesh_index& index)
+inline Status build_connectivity(Mesh_index& index)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   const int nf = index.number_of_faces();
@@ -213,7 +225,7 @@ inline Index_status build_connectivity(Mesh_index& index)
 }
 
 /// Checks the geometry the numeric core relies on: finite coordinates, no zero-area face.
-inline Index_status check_geometry(const Mesh_index& index)
+inline Status check_geometry(const Mesh_index& index)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   for(int v = 0; v < index.number_of_vertices(); ++v)
@@ -284,7 +296,7 @@ faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<Triang
 /// frame), else centred and scaled to the component's own bounding box; UVs computed from
 /// the index are multiplied by `index.normalisation.scale` to be in the mesh's units.
 template <class TriangleMesh, class VertexPointMap>
-Index_status index_mesh(const TriangleMesh& mesh,
+Status index_mesh(const TriangleMesh& mesh,
                         typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
                         VertexPointMap vpm, Mesh_index& index,
                         std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&
@@ -349,7 +361,7 @@ Index_status index_mesh(const TriangleMesh& mesh,
   for(auto& p : index.points)
     p = index.normalisation.apply(p);
 
-  Index_status status = build_connectivity(index);
+  Status status = build_connectivity(index);
   if(!status.ok())
     return status;
   return check_geometry(index);
