@@ -302,7 +302,7 @@ TEST(CutGraph, OctahedronOppositeConesAreJoinedByATwoEdgePath)
   EXPECT_EQ(result.number_of_generators, 0);
   EXPECT_NEAR(result.seam_length, 2 * std::sqrt(2.0), 1e-12);
   // The path runs north -> one equator vertex -> south.
-  const auto degree = ICM::internal::cutting::seam_degrees(index, result.is_seam);
+  const auto degree = ICM::internal::seam_degrees(index, result.is_seam);
   EXPECT_EQ(degree[4], 1);
   EXPECT_EQ(degree[5], 1);
   EXPECT_EQ(degree[0] + degree[1] + degree[2] + degree[3], 2);
@@ -423,7 +423,7 @@ TEST(CutGraph, Sphere966FourConesAreJoinedByAShortTree)
   EXPECT_EQ(result.number_of_tree_edges, result.number_of_seam_edges);
 
   // A tree: its ends are cones only (checked above) and it has one edge fewer than vertices.
-  const auto degree = ICM::internal::cutting::seam_degrees(index, result.is_seam);
+  const auto degree = ICM::internal::seam_degrees(index, result.is_seam);
   EXPECT_EQ(result.number_of_seam_edges + 1,
             static_cast<int>(std::count_if(degree.begin(), degree.end(), [](int d) { return d > 0; })));
 

@@ -13,9 +13,12 @@
 // (a UV array of the wrong size, a non-finite coordinate) is reported by std::invalid_argument.
 //
 // Robustness: candidate pairs come from CGAL's box intersection on the edges' bounding boxes,
-// which are exact for double coordinates; every candidate is then decided by the exact
-// predicates of Exact_predicates_inexact_constructions_kernel. A layout whose two border
-// vertices merely touch is therefore reported, however close to the rounding error it is.
+// which are exact for double coordinates; every candidate is then decided by an exact
+// orientation predicate (CGAL's interval arithmetic, and its exact MP_Float where the
+// interval cannot tell the sign), the one predicate the tests below need. A layout whose two
+// border vertices merely touch is therefore reported, however close to the rounding error it
+// is. (The Exact_predicates_inexact_constructions_kernel would decide the same, at about
+// twice the preprocessed size of everything else the disk parameterizer includes.)
 
 #ifndef ICM_BORDER_OVERLAPS_H
 #define ICM_BORDER_OVERLAPS_H
@@ -23,9 +26,10 @@
 #include <ICM/Layout.h>
 #include <ICM/internal/Mesh_index.h>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Bbox_2.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/MP_Float.h>
 #include <CGAL/box_intersection_d.h>
-#include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <array>
@@ -51,14 +55,46 @@ struct Border_overlaps
 
 namespace internal {
 
-using Overlap_kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Overlap_point = Overlap_kernel::Point_2;
 /// A bounding box carrying the id of its edge or face. Ids are explicit because the box
 /// intersection sorts copies of the boxes, so addresses cannot identify them.
 using Overlap_box =
   CGAL::Box_intersection_d::Box_with_info_d<double, 2, int, CGAL::Box_intersection_d::ID_EXPLICIT>;
 
-inline Overlap_point to_point(const Uv& p) { return Overlap_point(p[0], p[1]); }
+/// The side of r relative to the line pq (the sign of (q - p) x (r - p)), exactly.
+inline CGAL::Orientation orientation(const Uv& p, const Uv& q, const Uv& r)
+{
+  using Interval = CGAL::Interval_nt<>;
+  const Interval d = (Interval(q[0]) - p[0]) * (Interval(r[1]) - p[1]) - (Interval(q[1]) - p[1]) * (Interval(r[0]) - p[0]);
+  if(d.inf() > 0)
+    return CGAL::LEFT_TURN;
+  if(d.sup() < 0)
+    return CGAL::RIGHT_TURN;
+  // Differences and products of doubles are exact in MP_Float.
+  using Exact = CGAL::MP_Float;
+  const Exact e = (Exact(q[0]) - Exact(p[0])) * (Exact(r[1]) - Exact(p[1])) -
+                  (Exact(q[1]) - Exact(p[1])) * (Exact(r[0]) - Exact(p[0]));
+  return static_cast<CGAL::Orientation>(CGAL::sign(e));
+}
+
+/// For collinear p, q, r: whether q lies on the closed segment pr (CGAL's
+/// `collinear_are_ordered_along_line`, by exact comparisons of coordinates).
+inline bool collinear_are_ordered_along_line(const Uv& p, const Uv& q, const Uv& r)
+{
+  for(int i = 0; i < 2; ++i)
+  {
+    if(p[i] < q[i])
+      return !(r[i] < q[i]);
+    if(q[i] < p[i])
+      return !(q[i] < r[i]);
+  }
+  return true; // q == p
+}
+
+/// Whether p lies on the closed segment rs (r != s).
+inline bool segment_has_on(const Uv& r, const Uv& s, const Uv& p)
+{
+  return orientation(r, s, p) == CGAL::COLLINEAR && collinear_are_ordered_along_line(r, p, s);
+}
 
 /// Rejects input the exact predicates cannot decide: NaN compares false with everything, so a
 /// non-finite coordinate would silently drop its edges from every box.
@@ -86,21 +122,24 @@ inline Overlap_box triangle_box(const Uv& p, const Uv& q, const Uv& r, int id)
   return Overlap_box(point_box(p) + point_box(q) + point_box(r), id);
 }
 
-/// Whether closed segments pq and rs meet. CGAL's segment predicates expect a proper
-/// segment, and a zero-length border edge (two vertices at one UV) is still a point that can
-/// lie on another edge.
-inline bool segments_meet(const Overlap_point& p, const Overlap_point& q, const Overlap_point& r,
-                          const Overlap_point& s)
+/// Whether closed segments pq and rs meet. A zero-length border edge (two vertices at one
+/// UV) is still a point that can lie on another edge.
+inline bool segments_meet(const Uv& p, const Uv& q, const Uv& r, const Uv& s)
 {
-  using Segment = Overlap_kernel::Segment_2;
   const bool pq_point = (p == q), rs_point = (r == s);
   if(pq_point && rs_point)
     return p == r;
   if(pq_point)
-    return Segment(r, s).has_on(p);
+    return segment_has_on(r, s, p);
   if(rs_point)
-    return Segment(p, q).has_on(r);
-  return CGAL::do_intersect(Segment(p, q), Segment(r, s));
+    return segment_has_on(p, q, r);
+  const int pq_r = orientation(p, q, r), pq_s = orientation(p, q, s);
+  const int rs_p = orientation(r, s, p), rs_q = orientation(r, s, q);
+  if(pq_r * pq_s > 0 || rs_p * rs_q > 0)
+    return false; // one segment lies strictly on one side of the other's line
+  if(pq_r == 0 && pq_s == 0) // on one line: they meet where one holds an end of the other
+    return segment_has_on(p, q, r) || segment_has_on(p, q, s) || segment_has_on(r, s, p);
+  return true;
 }
 
 /// Whether border edges `e` and `f` meet beyond what the mesh itself makes them share.
@@ -114,13 +153,11 @@ inline bool border_edges_meet(const Mesh_index& index, const std::vector<Uv>& uv
     for(int j = 0; j < 2; ++j)
       if(a[i] == b[j])
       {
-        const Overlap_point shared = to_point(uv[a[i]]);
-        const Overlap_point far_a = to_point(uv[a[1 - i]]), far_b = to_point(uv[b[1 - j]]);
-        return CGAL::orientation(shared, far_a, far_b) == CGAL::COLLINEAR &&
-               !CGAL::collinear_are_ordered_along_line(far_a, shared, far_b);
+        const Uv &shared = uv[a[i]], &far_a = uv[a[1 - i]], &far_b = uv[b[1 - j]];
+        return orientation(shared, far_a, far_b) == CGAL::COLLINEAR &&
+               !collinear_are_ordered_along_line(far_a, shared, far_b);
       }
-  return segments_meet(to_point(uv[a[0]]), to_point(uv[a[1]]), to_point(uv[b[0]]),
-                       to_point(uv[b[1]]));
+  return segments_meet(uv[a[0]], uv[a[1]], uv[b[0]], uv[b[1]]);
 }
 
 /// Sorted `(min, max)` pairs, so that results do not depend on the traversal order.
@@ -136,14 +173,12 @@ inline std::vector<std::pair<int, int>> normalized_pairs(std::vector<std::pair<i
 /// Whether the line of some edge of triangle `t` (of orientation `o`, so its interior is on
 /// the `o` side of each edge) has no corner of `u` strictly on the interior side: that line
 /// then separates the two interiors.
-inline bool separated_by_an_edge_of(const std::array<Overlap_point, 3>& t, CGAL::Orientation o,
-                                    const std::array<Overlap_point, 3>& u)
+inline bool separated_by_an_edge_of(const std::array<Uv, 3>& t, CGAL::Orientation o, const std::array<Uv, 3>& u)
 {
   for(int i = 0; i < 3; ++i)
   {
-    const Overlap_point &p = t[i], &q = t[(i + 1) % 3];
-    if(CGAL::orientation(p, q, u[0]) != o && CGAL::orientation(p, q, u[1]) != o &&
-       CGAL::orientation(p, q, u[2]) != o)
+    const Uv &p = t[i], &q = t[(i + 1) % 3];
+    if(orientation(p, q, u[0]) != o && orientation(p, q, u[1]) != o && orientation(p, q, u[2]) != o)
       return true;
   }
   return false;
@@ -153,28 +188,20 @@ inline bool separated_by_an_edge_of(const std::array<Overlap_point, 3>& t, CGAL:
 /// disjoint interiors are separated by the line of one of their edges, so six edge lines
 /// decide it; sharing a vertex or an edge, or touching, is not an overlap. A zero-area
 /// triangle has no interior and overlaps nothing.
-inline bool triangle_interiors_overlap(const std::array<Overlap_point, 3>& t,
-                                       const std::array<Overlap_point, 3>& u)
+inline bool triangle_interiors_overlap(const std::array<Uv, 3>& t, const std::array<Uv, 3>& u)
 {
-  const CGAL::Orientation ot = CGAL::orientation(t[0], t[1], t[2]);
-  const CGAL::Orientation ou = CGAL::orientation(u[0], u[1], u[2]);
+  const CGAL::Orientation ot = orientation(t[0], t[1], t[2]);
+  const CGAL::Orientation ou = orientation(u[0], u[1], u[2]);
   if(ot == CGAL::COLLINEAR || ou == CGAL::COLLINEAR)
     return false;
   return !separated_by_an_edge_of(t, ot, u) && !separated_by_an_edge_of(u, ou, t);
 }
 
-inline std::array<Overlap_point, 3> uv_triangle(const Mesh_index& index, const std::vector<Uv>& uv,
-                                                int f)
+inline std::array<Uv, 3> uv_triangle(const Mesh_index& index, const std::vector<Uv>& uv, int f)
 {
   const auto& v = index.faces[f];
-  return {to_point(uv[v[0]]), to_point(uv[v[1]]), to_point(uv[v[2]])};
+  return {uv[v[0]], uv[v[1]], uv[v[2]]};
 }
-
-/// Thrown by a box callback to end the traversal at the first hit, as CGAL's own
-/// `does_self_intersect` does: box_intersection_d has no other way to stop early.
-struct First_overlap_found
-{
-};
 
 /// Face pairs of `faces` whose UV interiors overlap; stops after the first one when
 /// `first_only`.
@@ -193,21 +220,15 @@ inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index,
     boxes.push_back(triangle_box(uv[v[0]], uv[v[1]], uv[v[2]], f));
   }
   std::vector<std::pair<int, int>> pairs;
+  // box_intersection_d cannot be stopped but by an exception; after the first hit the
+  // remaining box pairs are passed over without their exact test, the costly part.
   auto test = [&](const Overlap_box& a, const Overlap_box& b) {
+    if(first_only && !pairs.empty())
+      return;
     if(triangle_interiors_overlap(uv_triangle(index, uv, a.info()), uv_triangle(index, uv, b.info())))
-    {
       pairs.emplace_back(a.info(), b.info());
-      if(first_only)
-        throw First_overlap_found();
-    }
   };
-  try
-  {
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), test);
-  }
-  catch(const First_overlap_found&)
-  {
-  }
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), test);
   return normalized_pairs(std::move(pairs));
 }
 

@@ -61,18 +61,7 @@ enum class Lbfgs_preconditioner
   /// Hessians at the start (their optimum lies far from it on the horse, and their faces in
   /// the development are not the metric's) took 178 (log area) and 133 (area) steps there
   /// instead of 59 and 64.
-  Gauss_newton,
-  /// (P^T M P)^{-1}, P the harmonic extension and M the energy's `hessian_diagonal`, by one
-  /// factorization of Delta_N. M^{-1} Delta_.N at the start. At the entropy optimum of
-  /// nefertiti and mushroom it brings the condition number of the log-area reduced Hessian
-  /// from 160-180 to 10-12, but L-BFGS does as well without it, and on the horse, whose
-  /// optimum lies far from the start, it takes 60 steps to where the identity takes 10.
-  /// Falls back to the identity for an energy without `hessian_diagonal`.
-  Mass,
-  /// The Dirichlet-to-Neumann map Sigma = Delta_SS - Delta_SN Delta_NN^{-1} Delta_NS (one
-  /// solve per application), the natural metric of u_S for the entropy and the angle energy;
-  /// it helped none of them (kept for experiments).
-  Dirichlet_to_Neumann
+  Gauss_newton
 };
 
 /// Options of both optimizers.
@@ -133,7 +122,7 @@ inline Status check_options(const Curvature_space_options& options, const std::s
     .at_least("memory", options.memory, 1)
     .at_least("frozen_steps", options.frozen_steps, 0)
     .real("trial_tolerance_factor", options.trial_tolerance_factor, 0, true)
-    .one_of("preconditioner", options.preconditioner, 4)
+    .one_of("preconditioner", options.preconditioner, 2)
     .at_least("max_line_search_steps", options.max_line_search_steps, 1)
     .real("armijo", options.armijo, 0, false, 1, false)
     .nested(check_options(options.newton, prefix + "newton."))
@@ -182,7 +171,7 @@ std::string singular_set_problem(const Mesh_index& index, const Metric& metric, 
     // The development is exact where it is flat off S: every interior cone must lie on a
     // seam of the cut it is developed along.
     const std::vector<int> seam_degree =
-      cutting::seam_degrees(index, development_seams(metric, index.number_of_edges()));
+      seam_degrees(index, development_seams(metric, index.number_of_edges()));
     for(int v : singular)
       if(!index.is_boundary_vertex[v] && seam_degree[v] == 0)
         return "interior cone " + std::to_string(v) +
@@ -364,60 +353,6 @@ inline void add_free_laplacian_rows(const Mesh_index& t, const std::vector<doubl
   }
 }
 
-/// The preconditioner (P^T M P)^{-1} of the reduced problem: for the energies of u and of
-/// areas, whose Hessian in u is close to a lumped mass M, this is the reduced Hessian up to
-/// the shape terms. x = (P^T M P)^{-1} r minimises (1/2) h^T M h - r . h_S over h with
-/// Delta_N. h = 0; its Lagrange multiplier solves B lambda = Delta_N. M^{-1} R with
-/// B = Delta_N. M^{-1} Delta_.N (R = r on S), and x = M_S^{-1} (r - Delta_SN lambda).
-class Mass_preconditioner
-{
-public:
-  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-
-  /// Factorizes B for the triangulation `t` with Jacobian weights `w`, masses `m` and
-  /// singular set `is_singular`. Returns false when B cannot be factorized.
-  bool build(const Mesh_index& t, const std::vector<double>& w, const Eigen::VectorXd& m,
-             const std::vector<char>& is_singular)
-  {
-    const int nv = t.number_of_vertices();
-    free_of_.assign(nv, -1);
-    int n = 0;
-    for(int v = 0; v < nv; ++v)
-      if(!is_singular[v])
-        free_of_[v] = n++;
-    // Delta_N. as an n x nv matrix, from the edges.
-    std::vector<Eigen::Triplet<double, int>> entries;
-    entries.reserve(4 * t.number_of_edges());
-    add_free_laplacian_rows(t, w, free_of_, 0, entries);
-    rows_.resize(n, nv);
-    rows_.setFromTriplets(entries.begin(), entries.end());
-    inverse_mass_ = m.cwiseInverse();
-    const Matrix b = rows_ * inverse_mass_.asDiagonal() * Matrix(rows_.transpose());
-    solver_.compute(b);
-    return solver_.info() == Eigen::Success && inverse_mass_.allFinite();
-  }
-
-  /// x for r given per singular vertex, in the order of `singular`.
-  Eigen::VectorXd apply(const Eigen::VectorXd& r, const std::vector<int>& singular) const
-  {
-    Eigen::VectorXd R = Eigen::VectorXd::Zero(inverse_mass_.size());
-    for(std::size_t s = 0; s < singular.size(); ++s)
-      R[singular[s]] = r[s];
-    const Eigen::VectorXd lambda = solver_.solve(rows_ * inverse_mass_.cwiseProduct(R));
-    const Eigen::VectorXd coupling = rows_.transpose() * lambda;
-    Eigen::VectorXd x(singular.size());
-    for(std::size_t s = 0; s < singular.size(); ++s)
-      x[s] = inverse_mass_[singular[s]] * (r[s] - coupling[singular[s]]);
-    return x;
-  }
-
-private:
-  std::vector<int> free_of_;
-  Matrix rows_;
-  Eigen::VectorXd inverse_mass_;
-  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> solver_;
-};
-
 /// The preconditioner (Z^T H Z)^{-1} of the reduced problem for a Hessian H in u (the
 /// energy's Gauss-Newton one) and Z the harmonic extension: x = (Z^T H Z)^{-1} r minimises
 /// (1/2) h^T H h - r . h_S over h with Delta_N. h = 0, whose KKT system
@@ -584,19 +519,6 @@ public:
     return reduced_.allFinite() && gradient_.allFinite();
   }
 
-  /// The mass preconditioner at the metric of the last `evaluate`.
-  bool build_mass_preconditioner(const std::vector<char>& is_singular)
-  {
-    Eigen::VectorXd m;
-    if constexpr(has_hessian_diagonal<Energy, Metric>)
-      energy_.hessian_diagonal(state_, m);
-    else
-      m = Eigen::VectorXd::Ones(index_.number_of_vertices());
-    ++report_.factorizations;
-    return mass_.build(state_.triangulation(), state_.weights(), m, is_singular);
-  }
-  Eigen::VectorXd apply_mass_preconditioner(const Eigen::VectorXd& r) const { return mass_.apply(r, singular_); }
-
   /// The Gauss-Newton preconditioner at the metric of the last `evaluate`.
   bool build_gauss_newton_preconditioner(const std::vector<char>& is_singular)
   {
@@ -653,27 +575,6 @@ public:
     return result;
   }
 
-  /// Sigma v = (Delta v~)_S with v~ = v on S and its harmonic extension on N.
-  Eigen::VectorXd dirichlet_to_neumann(const Eigen::VectorXd& v)
-  {
-    Eigen::VectorXd extended = harmonic_extension(v);
-    for(std::size_t s = 0; s < singular_.size(); ++s)
-      extended[singular_[s]] = v[s];
-    Eigen::VectorXd laplacian_of = Eigen::VectorXd::Zero(extended.size());
-    const Mesh_index& t = state_.triangulation();
-    for(int e = 0; e < t.number_of_edges(); ++e)
-    {
-      const int i = t.edges[e][0], j = t.edges[e][1];
-      const double flow = state_.weights()[e] * (extended[i] - extended[j]);
-      laplacian_of[i] += flow;
-      laplacian_of[j] -= flow;
-    }
-    Eigen::VectorXd result(singular_.size());
-    for(std::size_t s = 0; s < singular_.size(); ++s)
-      result[s] = laplacian_of[singular_[s]];
-    return result;
-  }
-
 private:
   /// full_S += W_SN y for y given per free unknown.
   void add_coupling(const Dynamic_laplacian<SparseSolver>& laplacian, const Eigen::VectorXd& y,
@@ -703,7 +604,6 @@ private:
   // log area, 1e-3 86 times, in as many steps.
   static constexpr double fresh_factorization_above = 1e-3; // max |k_N|, radians
   Energy_gradient partials_;
-  Mass_preconditioner mass_;
   Gauss_newton_preconditioner gauss_newton_;
   Eigen::VectorXd gradient_, reduced_;
   double value_ = 0;
@@ -808,17 +708,12 @@ Curvature_space_report minimize_energy_on_singular_values(
   int stopping_refreshes = 0;
 
   Lbfgs_preconditioner preconditioner = options.preconditioner;
-  if(preconditioner == Lbfgs_preconditioner::Mass &&
-     (!has_hessian_diagonal<Energy, Metric> || !problem.build_mass_preconditioner(is_singular)))
-    preconditioner = Lbfgs_preconditioner::Identity;
   if(preconditioner == Lbfgs_preconditioner::Gauss_newton &&
      (!has_gauss_newton<Energy, Metric> || !problem.build_gauss_newton_preconditioner(is_singular)))
     preconditioner = Lbfgs_preconditioner::Identity;
   auto apply_m = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-    Eigen::VectorXd x = preconditioner == Lbfgs_preconditioner::Dirichlet_to_Neumann ? problem.dirichlet_to_neumann(v)
-                        : preconditioner == Lbfgs_preconditioner::Mass                ? problem.apply_mass_preconditioner(v)
-                        : preconditioner == Lbfgs_preconditioner::Gauss_newton        ? problem.apply_gauss_newton_preconditioner(v)
-                                                                                      : v;
+    Eigen::VectorXd x =
+      preconditioner == Lbfgs_preconditioner::Gauss_newton ? problem.apply_gauss_newton_preconditioner(v) : v;
     internal::remove_mean(x);
     return x;
   };

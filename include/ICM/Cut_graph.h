@@ -336,18 +336,6 @@ inline int add_homology_generators(const Mesh_index& index, const Surface_graph&
   return generators;
 }
 
-inline std::vector<int> seam_degrees(const Mesh_index& index, const std::vector<char>& is_seam)
-{
-  std::vector<int> degree(index.number_of_vertices(), 0);
-  for(int e = 0; e < index.number_of_edges(); ++e)
-    if(is_seam[e])
-    {
-      ++degree[index.edges[e][0]];
-      ++degree[index.edges[e][1]];
-    }
-  return degree;
-}
-
 /// Repeatedly removes the seam edge at a vertex of seam-degree 1 that is neither a cone nor
 /// on the border. Returns the number of edges removed.
 inline int prune_dangling_seams(const Mesh_index& index, const Surface_graph& graph,
@@ -416,12 +404,6 @@ inline void split_lone_seam_edges(const Mesh_index& index, std::vector<char>& is
         is_seam[other] = 1;
     degree = seam_degrees(index, is_seam);
   }
-}
-
-/// The corner (0, 1 or 2) of face `f` at vertex `v`.
-inline int corner_of_vertex(const Mesh_index& index, int f, int v)
-{
-  return index.faces[f][0] == v ? 0 : (index.faces[f][1] == v ? 1 : 2);
 }
 
 /// The sides of the surface vertices once cut: two corners of a vertex in the two faces of an
@@ -569,7 +551,7 @@ inline Status check_cut_graph(const internal::Mesh_index& index, const std::vect
       return not_a_disk("a seam edge is a border edge: " + describe_seam_edge(index, e) +
                        " is on the border already");
 
-  const std::vector<int> degree = seam_degrees(index, is_seam);
+  const std::vector<int> degree = internal::seam_degrees(index, is_seam);
   for(int v = 0; v < index.number_of_vertices(); ++v)
     if(!is_cone.empty() && is_cone[v] && degree[v] == 0 && !index.is_boundary_vertex[v])
       return not_a_disk("cone vertex " + std::to_string(v) + " is neither on a seam nor on the border");
@@ -746,29 +728,6 @@ inline Cut_mesh cut_mesh(const internal::Mesh_index& index, const std::vector<ch
   return cut;
 }
 
-/// The key of the wedge of corner `c` of face `f`: its vertex, and the seam or border edge
-/// that ends the wedge turning counter-clockwise around it (none for an uncut vertex). Two
-/// triangulations of one surface with the same vertices, border and seam edges (the mesh
-/// and an intrinsic triangulation of it) give their wedges the same keys.
-inline long long wedge_key(const internal::Mesh_index& index, const std::vector<char>& is_seam,
-                           int f, int c)
-{
-  const int v = index.faces[f][c];
-  const long long base = static_cast<long long>(v) * (index.number_of_edges() + 1);
-  for(int g = f, k = c, steps = 0; steps < index.number_of_faces(); ++steps)
-  {
-    // In face (v, x, y), counter-clockwise, turning past y crosses edge vy.
-    const int e = index.face_edges[g][(k + 1) % 3];
-    if(is_seam[e] || index.edge_faces[e][1] < 0)
-      return base + e + 1;
-    g = index.edge_faces[e][0] == g ? index.edge_faces[e][1] : index.edge_faces[e][0];
-    k = internal::cutting::corner_of_vertex(index, g, v);
-    if(g == f)
-      break;
-  }
-  return base;
-}
-
 /// For each wedge (disk vertex) of `cut`, the wedge of `other_cut` with the same key, where
 /// `cut` cuts `index` and `other_cut` cuts `other` along the same seam edges; empty when a
 /// wedge has no partner.
@@ -781,7 +740,7 @@ inline std::vector<int> match_wedges(const internal::Mesh_index& index, const Cu
     for(int f = 0; f < c.disk.number_of_faces(); ++f)
       for(int k = 0; k < 3; ++k)
         if(key[c.disk.faces[f][k]] < 0)
-          key[c.disk.faces[f][k]] = wedge_key(surface, is_seam, f, k);
+          key[c.disk.faces[f][k]] = internal::wedge_key(surface, is_seam, f, k);
     return key;
   };
   const std::vector<long long> mine = keys(index, cut), theirs = keys(other, other_cut);

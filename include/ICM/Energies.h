@@ -55,7 +55,6 @@
 #define ICM_ENERGIES_H
 
 #include <ICM/Curvature_map.h>
-#include <ICM/Cut_graph.h>
 #include <ICM/Distortion.h>
 #include <ICM/Intrinsic_delaunay_metric.h>
 #include <ICM/Layout.h>
@@ -418,14 +417,14 @@ private:
   {
     seams_ = seams;
     const int nv = mesh_.number_of_vertices();
-    seam_degree_ = internal::cutting::seam_degrees(mesh_, seams_);
+    seam_degree_ = internal::seam_degrees(mesh_, seams_);
     mesh_wedges_ = mesh_.faces;
     number_of_wedges_ = nv;
     std::vector<std::pair<long long, int>> corners; // (key, 3 f + c)
     for(int f = 0; f < mesh_.number_of_faces(); ++f)
       for(int c = 0; c < 3; ++c)
         if(seam_degree_[mesh_.faces[f][c]] > 0)
-          corners.push_back({wedge_key(mesh_, seams_, f, c), 3 * f + c});
+          corners.push_back({internal::wedge_key(mesh_, seams_, f, c), 3 * f + c});
     std::sort(corners.begin(), corners.end());
     std::vector<char> has_own_id(nv, 0);
     wedge_of_key_.clear();
@@ -452,7 +451,7 @@ private:
       for(int c = 0; c < 3; ++c)
         if(seam_degree_[t.faces[f][c]] > 0)
         {
-          const long long key = wedge_key(t, seams_, f, c);
+          const long long key = internal::wedge_key(t, seams_, f, c);
           const auto it = std::lower_bound(wedge_of_key_.begin(), wedge_of_key_.end(), std::make_pair(key, -1));
           if(it != wedge_of_key_.end() && it->first == key)
             wedges_[f][c] = it->second;
@@ -690,15 +689,6 @@ struct Has_curvature_gradient<Energy, State,
   : std::true_type
 {};
 
-template <class Energy, class State, class = void>
-struct Has_hessian_diagonal : std::false_type
-{};
-template <class Energy, class State>
-struct Has_hessian_diagonal<Energy, State,
-                            std::void_t<decltype(std::declval<const Energy&>().hessian_diagonal(
-                              std::declval<const State&>(), std::declval<Eigen::VectorXd&>()))>>
-  : std::true_type
-{};
 
 template <class Energy, class State, class = void>
 struct Has_gauss_newton : std::false_type
@@ -743,10 +733,6 @@ constexpr bool has_energy_value = internal::Has_energy_value<Energy, Energy_stat
 template <class Energy, class Metric>
 constexpr bool has_curvature_gradient = internal::Has_curvature_gradient<Energy, Energy_state<Metric>>::value;
 
-/// Whether `Energy` estimates the diagonal of its Hessian in u (`hessian_diagonal`), which
-/// the singular-values optimizer turns into its preconditioner.
-template <class Energy, class Metric>
-constexpr bool has_hessian_diagonal = internal::Has_hessian_diagonal<Energy, Energy_state<Metric>>::value;
 
 /// Whether `Energy` gives its Gauss-Newton Hessian in u (`gauss_newton`), which the
 /// singular-values optimizer turns into its default preconditioner.
@@ -845,12 +831,6 @@ struct U_square
     partials.u += 2.0 / h.size() * h;
   }
 
-  template <class Metric>
-  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
-  {
-    m = Eigen::VectorXd::Constant(state.u().size(), 2.0 / state.u().size());
-  }
-
 private:
   template <class Metric>
   static Eigen::VectorXd centred(const Energy_state<Metric>& state)
@@ -886,19 +866,6 @@ struct Area_distortion
     const double n = state.number_of_faces();
     for(int f = 0; f < state.number_of_faces(); ++f)
       partials.area[f] += 2.0 / n * (state.area(f) / state.mesh_area(f) - 1.0) / state.mesh_area(f);
-  }
-
-  /// The residual s_f / A_f - 1 moves by about (2/3) s_f / A_f per unit of u at a corner.
-  template <class Metric>
-  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
-  {
-    m.setZero(state.u().size());
-    for(int f = 0; f < state.number_of_faces(); ++f)
-    {
-      const double x = state.area(f) / state.mesh_area(f);
-      for(int v : state.mesh().faces[f])
-        m[v] += 8.0 / 3.0 * x * x / state.number_of_faces();
-    }
   }
 };
 
@@ -1017,16 +984,6 @@ public:
     for(int f = 0; f < state.number_of_faces(); ++f)
       partials.area[f] +=
         weight(state, f) * log_squared(state.area(f) / state.mesh_area(f)).derivative / state.mesh_area(f);
-  }
-
-  /// log s_f moves by about 2/3 per unit of u at a corner: the lumped Gauss-Newton Hessian.
-  template <class Metric>
-  void hessian_diagonal(const Energy_state<Metric>& state, Eigen::VectorXd& m) const
-  {
-    m.setZero(state.u().size());
-    for(int f = 0; f < state.number_of_faces(); ++f)
-      for(int v : state.mesh().faces[f])
-        m[v] += 8.0 / 3.0 * weight(state, f);
   }
 
   struct Value_and_derivative

@@ -226,7 +226,7 @@ public:
     const auto mesh_halfedges = halfedges(mesh);
     if(std::find(mesh_halfedges.begin(), mesh_halfedges.end(), bhd) == mesh_halfedges.end())
       return run.fail(ERROR_WRONG_PARAMETER, "the border halfedge given is not a halfedge of this mesh");
-    if(!is_border(bhd, mesh))
+    if(face(bhd, mesh) != boost::graph_traits<TriangleMesh>::null_face())
       return run.fail(ERROR_WRONG_PARAMETER, "the halfedge given is not on a border");
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;

@@ -34,6 +34,7 @@
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
+#include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 
@@ -471,7 +472,7 @@ Status optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_s
       // A wedge may move when its vertex is on no seam, or with its twin across a seam
       // through a flat vertex. Not the one wedge of a cone where a seam ends: both sides of
       // its seam edge start there, and moving it would give them different lengths.
-      const std::vector<int> seam_degree = cutting::seam_degrees(index, is_seam);
+      const std::vector<int> seam_degree = seam_degrees(index, is_seam);
       const std::vector<Seam_twin> twins = seam_twins(index, cut, uv);
       std::vector<char> is_movable(cut.surface_vertex.size());
       for(std::size_t w = 0; w < is_movable.size(); ++w)
@@ -543,11 +544,7 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   {
     // A seam through a flat vertex passes it (two seam edges); anywhere else the two sides
     // meet at an angle the flat metric cannot have, so the vertex must be singular.
-    std::vector<int> seam_degree(nv, 0);
-    for(int e = 0; e < index.number_of_edges(); ++e)
-      if(user_seams[e])
-        for(int v : index.edges[e])
-          ++seam_degree[v];
+    const std::vector<int> seam_degree = seam_degrees(index, user_seams);
     for(int v = 0; v < nv; ++v)
       if(seam_degree[v] != 0 && seam_degree[v] != 2)
         is_singular[v] = 1;

@@ -10,7 +10,6 @@
 #include <ICM/internal/Unit_frame.h>
 
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
-#include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Dynamic_property_map.h>
@@ -106,6 +105,48 @@ std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> sor
     all.push_back(h);
   std::sort(all.begin(), all.end());
   return all;
+}
+
+/// Per vertex, the number of edges flagged in `is_seam` (per edge) that end there.
+inline std::vector<int> seam_degrees(const Mesh_index& index, const std::vector<char>& is_seam)
+{
+  std::vector<int> degree(index.number_of_vertices(), 0);
+  for(int e = 0; e < index.number_of_edges(); ++e)
+    if(is_seam[e])
+    {
+      ++degree[index.edges[e][0]];
+      ++degree[index.edges[e][1]];
+    }
+  return degree;
+}
+
+/// The corner (0, 1 or 2) of face `f` at vertex `v`.
+inline int corner_of_vertex(const Mesh_index& index, int f, int v)
+{
+  return index.faces[f][0] == v ? 0 : (index.faces[f][1] == v ? 1 : 2);
+}
+
+/// The key of the wedge of corner `c` of face `f`: its vertex, and the seam or border edge
+/// that ends the wedge turning counter-clockwise around it (none for an uncut vertex). Two
+/// triangulations of one surface with the same vertices, border and seam edges (the mesh
+/// and an intrinsic triangulation of it) give their wedges the same keys.
+inline long long wedge_key(const Mesh_index& index, const std::vector<char>& is_seam,
+                           int f, int c)
+{
+  const int v = index.faces[f][c];
+  const long long base = static_cast<long long>(v) * (index.number_of_edges() + 1);
+  for(int g = f, k = c, steps = 0; steps < index.number_of_faces(); ++steps)
+  {
+    // In face (v, x, y), counter-clockwise, turning past y crosses edge vy.
+    const int e = index.face_edges[g][(k + 1) % 3];
+    if(is_seam[e] || index.edge_faces[e][1] < 0)
+      return base + e + 1;
+    g = index.edge_faces[e][0] == g ? index.edge_faces[e][1] : index.edge_faces[e][0];
+    k = corner_of_vertex(index, g, v);
+    if(g == f)
+      break;
+  }
+  return base;
 }
 
 /// The 3D length of edge `e` (normalised units).
