@@ -20,10 +20,10 @@
 // method's (plus the process image inherited at fork, which holds the input mesh).
 // See doc/benchmarks.md.
 
-#include <ICM/Distortion.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/write_uv_svg.h>
-#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/measures/Distortion.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>

@@ -1,12 +1,12 @@
 // Google Benchmark micro-benchmarks of the numeric kernels at several mesh sizes: the
 // curvature map, Laplacian assembly, numeric factorization, one Newton step, the layouts.
 // Meshes: the bundled disks, and three_peaks refined by Loop subdivision for larger sizes.
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Dynamic_laplacian.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Layout.h>
-#include <ICM/Optimal_metric.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Simple_cartesian.h>

@@ -1,6 +1,6 @@
 # Finds SuiteSparse's CHOLMOD and defines the imported target `ICM::CHOLMOD`: the CHOLMOD
 # headers and libraries, and the compile definition `ICM_HAS_CHOLMOD` that turns on ICM's
-# CHOLMOD solvers (`include/ICM/Dynamic_laplacian.h`). Sets `ICM_CHOLMOD_FOUND`.
+# CHOLMOD solvers (`include/ICM/curvature/Dynamic_laplacian.h`). Sets `ICM_CHOLMOD_FOUND`.
 #
 # ICM's own CMakeLists.txt includes it at configure time, and the installed ICMConfig.cmake
 # includes it again on the user's machine, so the libraries are those found there, not the

@@ -20,15 +20,15 @@
 // object on stdout), exits non-zero and changes no file: the OBJ and the SVG are written to
 // temporary files and renamed into place together, only when both were written.
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Distortion.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Vertex_scaling_metric.h>
-#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/read_seam_selection.h>
 #include <ICM/IO/read_triangle_mesh.h>
+#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/write_uv_files.h>
+#include <ICM/measures/Distortion.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Inversive_distance_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/parameterize.h>
 
 #include "icm_param_energy.h"

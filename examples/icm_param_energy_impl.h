@@ -7,10 +7,10 @@
 
 #include "icm_param_energy.h"
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Inversive_distance_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>

@@ -6,9 +6,9 @@
 // refused with their reason. Every geometric check is made on the UVs written, not on the
 // report.
 
-#include <ICM/Border_conditions.h>
-#include <ICM/Energies.h>
+#include <ICM/border/Border_conditions.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/optimum/Energies.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>

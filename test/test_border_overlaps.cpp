@@ -8,8 +8,8 @@
 
 #include "test_support.h"
 
-#include <ICM/Border_overlaps.h>
-#include <ICM/Chart_packing.h>
+#include <ICM/layout/Border_overlaps.h>
+#include <ICM/layout/Chart_packing.h>
 
 #include <algorithm>
 #include <array>

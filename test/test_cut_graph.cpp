@@ -3,7 +3,7 @@
 // vertex per wedge. Hand-built fixtures (octahedron, torus grid, torus with a hole) pin exact
 // counts; the shared meshes cover genus 0 to 3 and up to 7 boundary loops.
 
-#include <ICM/Cut_graph.h>
+#include <ICM/cut/Cut_graph.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Simple_cartesian.h>

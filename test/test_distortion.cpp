@@ -1,6 +1,6 @@
 // Tests of ICM/Distortion.h: analytic maps with closed-form measures, counting of flipped and
 // degenerate faces, and the FaceGraph front ends agreeing with the flat core.
-#include <ICM/Distortion.h>
+#include <ICM/measures/Distortion.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>

@@ -5,16 +5,17 @@
 // energy, interior cones, and the log-area optimum through the parameterizer lowering Table
 // I's eq. 8 without flipped faces on the shared disks.
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_space_optimizer.h>
-#include <ICM/Distortion.h>
-#include <ICM/Energies.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
+#include <ICM/cones/Singular_vertices.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Optimal_metric.h>
-#include <ICM/Singular_vertices.h>
-#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/measures/Distortion.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Inversive_distance_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
+#include <ICM/optimum/Curvature_space_optimizer.h>
+#include <ICM/optimum/Energies.h>
+#include <ICM/optimum/Optimal_metric.h>
+#include <ICM/reference/Projected_gradient.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>

@@ -1,8 +1,8 @@
 // Tests of the output side: Uv_mesh extraction from Surface_mesh, Polyhedron_3 and Seam_mesh,
 // the OBJ and SVG writers, and the atomic file replacement they rely on.
 
-#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/read_seam_selection.h>
+#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/write_uv_obj.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/internal/Atomic_file.h>

@@ -4,14 +4,15 @@
 // holds, Newton converges quadratically, and a target that would make a face invalid is
 // refused with a reason instead of a hang.
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Layout.h>
-#include <ICM/Optimal_metric.h>
-#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/layout/Unflip.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Inversive_distance_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Simple_cartesian.h>

@@ -1,12 +1,12 @@
 // The numeric core on flat arrays: mesh index, circle packing metric, curvature map and its
 // Jacobian, Newton (Algorithm 1), the free-boundary optimum in both forms, the layouts.
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Dynamic_laplacian.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Layout.h>
-#include <ICM/Optimal_metric.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Simple_cartesian.h>

@@ -2,8 +2,8 @@
 // non-finite number, a null or foreign descriptor is refused with ERROR_WRONG_PARAMETER and
 // a message that names it. Never a crash, never silently accepted.
 
-#include <ICM/Curvature_space_optimizer.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/optimum/Curvature_space_optimizer.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>

@@ -2,9 +2,9 @@
 // Polyhedron_3 and Seam_mesh, analytic cases (planar disks, a spherical cap), the real disk
 // meshes of the shared data set, nearly closed surfaces, and every kind of bad input.
 
-#include <ICM/Distortion.h>
-#include <ICM/IO/read_seam_selection.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/IO/read_seam_selection.h>
+#include <ICM/measures/Distortion.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -239,16 +239,22 @@ struct Outcome
   ICM::Parameterization_report report;
 };
 
-/// The drop-in path: CGAL's parameterize() with the longest border.
-template <class Metric = CGAL::Default, class Mesh, class UvMap>
-Outcome run_cgal(Mesh& mesh, UvMap uvmap, const ICM::Parameterization_options& options = {})
+/// The drop-in path: CGAL's parameterize() from the border halfedge `bhd`.
+template <class Metric = CGAL::Default, class Mesh, class Halfedge, class UvMap>
+Outcome run_cgal_from(Mesh& mesh, Halfedge bhd, UvMap uvmap, const ICM::Parameterization_options& options = {})
 {
   ICM::Inverse_curvature_map_parameterizer_3<Mesh, Metric> parameterizer(options);
-  const auto bhd = PMP::longest_border(mesh).first;
   Outcome run;
   run.status = SMP::parameterize(mesh, parameterizer, bhd, uvmap);
   run.report = parameterizer.report();
   return run;
+}
+
+/// The drop-in path: CGAL's parameterize() with the longest border.
+template <class Metric = CGAL::Default, class Mesh, class UvMap>
+Outcome run_cgal(Mesh& mesh, UvMap uvmap, const ICM::Parameterization_options& options = {})
+{
+  return run_cgal_from<Metric>(mesh, PMP::longest_border(mesh).first, uvmap, options);
 }
 
 /// The member function directly, with any halfedge (null, interior...).
@@ -461,10 +467,7 @@ TEST(ParameterizerDropIn, SeamMeshOfClosedSphere)
 
   // UVs on the canonical halfedges of the seam mesh vertices, as in CGAL's seam examples.
   auto uv_pm = sm.add_property_map<SM_halfedge, Point_2>("h:uv", Point_2(nan_value, nan_value)).first;
-  Parameterizer<Seam_mesh> parameterizer;
-  Outcome run;
-  run.status = SMP::parameterize(mesh, parameterizer, bhd, uv_pm);
-  run.report = parameterizer.report();
+  const Outcome run = run_cgal_from(mesh, bhd, uv_pm);
   expect_good_run(run, mesh, uv_pm, "Seam_mesh of sphere966");
   EXPECT_EQ(run.report.vertices, static_cast<int>(num_vertices(sm)) + 9);
   EXPECT_EQ(run.report.faces, static_cast<int>(num_faces(sm)));
@@ -545,11 +548,7 @@ TEST(ParameterizerDropIn, SeamMeshSeamsReadAsBorderOrAsCuts)
 
   // As border: CGAL's parameterize() with the disk parameterizer.
   auto border_uv = sm.add_property_map<SM_halfedge, Point_2>("h:uv_border", Point_2(nan_value, nan_value)).first;
-  Parameterizer<Seam_mesh> parameterizer;
-  Outcome run;
-  run.status = SMP::parameterize(mesh, parameterizer, bhd, border_uv);
-  run.report = parameterizer.report();
-  expect_good_run(run, mesh, border_uv, "seams as border");
+  expect_good_run(run_cgal_from(mesh, bhd, border_uv), mesh, border_uv, "seams as border");
   const auto [border_length_mismatch, border_angle_defect] = seam_mismatch(mesh, sm, border_uv);
   EXPECT_LT(border_length_mismatch, 1e-7);
   EXPECT_GT(border_angle_defect, 1e-2);

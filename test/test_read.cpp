@@ -2,12 +2,12 @@
 // the repairs that make a triangle mesh of their soup, the all-or-nothing writing of several
 // files, scale-free indexing, and the library's "not run" and empty-mesh answers.
 
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
 #include <ICM/IO/read_polygon_soup.h>
 #include <ICM/IO/read_triangle_mesh.h>
-#include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/parameterize.h>
 #include <ICM/internal/Atomic_file.h>
 #include <ICM/internal/Mesh_index.h>
-#include <ICM/parameterize.h>
 
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Simple_cartesian.h>
@@ -79,6 +79,7 @@ TEST(ReadPolygonSoup, OffVariantsReadTheSamePointsAndFaces)
     "STCNOFF\n4 2 0\n0 0 0 0 0 1 1 0 0 0 0\n1 0 0 0 0 1 1 0 0 1 0\n1 1 0.5 0 0 1 1 0 0 1 1\n"
     "0 1 0 0 0 1 1 0 0 0 1\n3 0 1 2\n3 0 2 3\n",
     "4OFF\n4 2 0\n0 0 0 2\n2 0 0 2\n-1 -1 -0.5 -1\n0 4 0 4\n3 0 1 2\n3 0 2 3\n",
+    "\xEF\xBB\xBFOFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0.5\n0 1 0\n3 0 1 2\n3 0 2 3\n", // a UTF-8 byte-order mark
   };
   for(const char* body : bodies)
   {
@@ -213,6 +214,8 @@ TEST(ReadPolygonSoup, EveryRefusalNamesWhereAndWhat)
     {Mesh_file_format::Off, "STOFF\n3 1 0\n0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n", "line 3: vertex 0 has 3 numbers; this OFF variant has 5"},
     {Mesh_file_format::Off, "nOFF\n3\n", "nOFF"},
     {Mesh_file_format::Off, "OFF BINARY\n", "binary OFF is not supported"},
+    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n",
+     "line 7: the file goes on after the 1 faces its header announces"},
     {Mesh_file_format::Off, "ply\nformat ascii 1.0\n", "looks like PLY, not OFF"},
     {Mesh_file_format::Obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "line 4: face 0: vertex index 0 (OBJ indices start at 1)"},
     {Mesh_file_format::Obj, "v 0 0 0\nf -1 -2 -3\n", "relative vertex index -2 reaches before the first vertex"},

@@ -3,8 +3,8 @@
 // boundaries, several components; user cones; the refusals; the result read back through a
 // `CGAL::Seam_mesh` and on `Polyhedron_3`; energies other than the entropy on every topology.
 
-#include <ICM/Distortion.h>
 #include <ICM/IO/read_seam_selection.h>
+#include <ICM/measures/Distortion.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Polyhedron_3.h>

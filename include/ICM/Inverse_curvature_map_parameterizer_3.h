@@ -8,20 +8,21 @@
 #ifndef ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 #define ICM_INVERSE_CURVATURE_MAP_PARAMETERIZER_3_H
 
-#include <ICM/Border_conditions.h>
-#include <ICM/Border_overlaps.h>
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Curvature_space_optimizer.h>
-#include <ICM/Dynamic_laplacian.h>
-#include <ICM/Energies.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Inversive_distance_metric.h>
-#include <ICM/Layout.h>
-#include <ICM/Optimal_metric.h>
+#include <ICM/border/Border_conditions.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Border_overlaps.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/layout/Unflip.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Inversive_distance_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
+#include <ICM/optimum/Curvature_space_optimizer.h>
+#include <ICM/optimum/Energies.h>
+#include <ICM/optimum/Optimal_metric.h>
 #include <ICM/Status.h>
-#include <ICM/Vertex_scaling_metric.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Option_checks.h>
 

@@ -104,6 +104,10 @@ write("off_count_not_a_number.off", "OFF\nthree 1 0\n", 1, "not a non-negative i
 write("off_index_out_of_range.off", off(P, T[:-1] + [(0, 5, 16)]), 1, "vertex index 16 is out of range")
 write("off_negative_index.off", off(P, [(0, -1, 5)] + T[1:]), 1, "vertex index -1 is out of range")
 write("off_huge_index.off", off(P, [(0, 1, 99999999999999999999)] + T[1:]), 1, "not a vertex index")
+write("off_more_faces_than_announced.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n", 1,
+      "line 7: the file goes on after the 1 faces its header announces")
+write("off_byte_order_mark.off", "\ufeff" + off(P, T), 0, "-")
+write("obj_byte_order_mark.obj", "\ufeff" + obj(P, T), 0, "-")
 write("off_face_size_huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000 0 1 2\n", 1,
       "announces 1000000000 corners")
 write("off_face_size_two.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 1, "a face needs at least 3")

@@ -8,11 +8,11 @@
 //
 // Build and run: test/fuzz/run_fuzz.sh MINUTES (clang's -fsanitize=fuzzer).
 
-#include <ICM/Distortion.h>
-#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/read_triangle_mesh.h>
+#include <ICM/IO/Uv_mesh.h>
 #include <ICM/IO/write_uv_obj.h>
 #include <ICM/IO/write_uv_svg.h>
+#include <ICM/measures/Distortion.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>

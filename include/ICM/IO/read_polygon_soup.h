@@ -519,6 +519,10 @@ inline void read_off(std::string_view text, Polygon_soup& soup, const Soup_readi
     soup.polygons.push_back(std::move(polygon));
     soup.polygon_lines.push_back(lines.number());
   }
+  // Faces beyond the announced count would be lost unseen: the header or the file is wrong.
+  if(next_content_line(lines, line))
+    refuse_at(lines.number(), "the file goes on after the " + std::to_string(nf) +
+                                " faces its header announces (is the face count wrong?)");
 }
 
 // --- OBJ ---------------------------------------------------------------------------------
@@ -1179,6 +1183,11 @@ inline bool read_polygon_soup(std::string_view data, Mesh_file_format format, Po
   namespace internal = ICM::internal::reading;
   try
   {
+    // A UTF-8 byte-order mark, which some editors put at the start of a text file, is not
+    // content. (A binary STL's 80-byte header is free text, so it is left alone.)
+    constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
+    if(format != Mesh_file_format::Stl && data.substr(0, byte_order_mark.size()) == byte_order_mark)
+      data.remove_prefix(byte_order_mark.size());
     if(data.empty())
       internal::refuse("the file is empty");
     // A content that announces another format is named, rather than misread as this one.

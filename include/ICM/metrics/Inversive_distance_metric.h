@@ -6,8 +6,8 @@
 // the mesh exactly, so at u0 the metric is the mesh and the conformal class is the mesh's
 // own. The price: not every u gives triangles, so Newton's line search keeps every face valid.
 
-#ifndef ICM_INVERSIVE_DISTANCE_METRIC_H
-#define ICM_INVERSIVE_DISTANCE_METRIC_H
+#ifndef ICM_METRICS_INVERSIVE_DISTANCE_METRIC_H
+#define ICM_METRICS_INVERSIVE_DISTANCE_METRIC_H
 
 #include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
@@ -53,4 +53,4 @@ public:
 
 } // namespace ICM
 
-#endif // ICM_INVERSIVE_DISTANCE_METRIC_H
+#endif // ICM_METRICS_INVERSIVE_DISTANCE_METRIC_H

@@ -8,8 +8,8 @@
 // The price: Algorithm 2 clamps the angles, so at u0 the packing is not the mesh, and its
 // conformal class is not the mesh's (see Inversive_distance_metric.h, Vertex_scaling_metric.h).
 
-#ifndef ICM_CIRCLE_PACKING_METRIC_H
-#define ICM_CIRCLE_PACKING_METRIC_H
+#ifndef ICM_METRICS_CIRCLE_PACKING_METRIC_H
+#define ICM_METRICS_CIRCLE_PACKING_METRIC_H
 
 #include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
@@ -196,4 +196,4 @@ inline Circle_packing_metric initial_circle_packing_metric(
 
 } // namespace ICM
 
-#endif // ICM_CIRCLE_PACKING_METRIC_H
+#endif // ICM_METRICS_CIRCLE_PACKING_METRIC_H

@@ -13,13 +13,13 @@
 // wedge whose faces end in different pieces gets one copy per piece, and the new seams join
 // the cut's surface edges, so seam lengths and wedges stay checkable as before.
 
-#ifndef ICM_OVERLAP_REMOVAL_H
-#define ICM_OVERLAP_REMOVAL_H
+#ifndef ICM_LAYOUT_OVERLAP_REMOVAL_H
+#define ICM_LAYOUT_OVERLAP_REMOVAL_H
 
-#include <ICM/Border_overlaps.h>
-#include <ICM/Chart_packing.h>
-#include <ICM/Cut_graph.h>
-#include <ICM/Layout.h>
+#include <ICM/cut/Cut_graph.h>
+#include <ICM/layout/Border_overlaps.h>
+#include <ICM/layout/Chart_packing.h>
+#include <ICM/layout/Layout.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <boost/graph/adjacency_list.hpp>
@@ -339,4 +339,4 @@ inline Overlap_removal remove_overlaps(const internal::Mesh_index& surface, Cut_
 
 } // namespace ICM
 
-#endif // ICM_OVERLAP_REMOVAL_H
+#endif // ICM_LAYOUT_OVERLAP_REMOVAL_H

@@ -11,12 +11,12 @@
 // `triangulation()` and `make_delaunay(g)`, the curvature map flips it at every u before
 // measuring, and `mesh_index()` is that triangulation instead of the mesh's.
 
-#ifndef ICM_CURVATURE_MAP_H
-#define ICM_CURVATURE_MAP_H
+#ifndef ICM_CURVATURE_CURVATURE_MAP_H
+#define ICM_CURVATURE_CURVATURE_MAP_H
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/internal/Triangle_geometry.h>
+#include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Triangle_geometry.h>
 
 #include <Eigen/Core>
 
@@ -153,4 +153,4 @@ inline double gauss_bonnet_defect(const internal::Mesh_index& index, const Eigen
 
 } // namespace ICM
 
-#endif // ICM_CURVATURE_MAP_H
+#endif // ICM_CURVATURE_CURVATURE_MAP_H

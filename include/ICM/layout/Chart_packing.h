@@ -13,10 +13,10 @@
 // among a few row widths around sqrt(total area) the one with the smallest enclosing square
 // is kept.
 
-#ifndef ICM_CHART_PACKING_H
-#define ICM_CHART_PACKING_H
+#ifndef ICM_LAYOUT_CHART_PACKING_H
+#define ICM_LAYOUT_CHART_PACKING_H
 
-#include <ICM/Layout.h>
+#include <ICM/layout/Layout.h>
 
 #include <algorithm>
 #include <array>
@@ -274,4 +274,4 @@ inline Chart_packing pack_charts(std::vector<std::vector<Uv>>& charts,
 
 } // namespace ICM
 
-#endif // ICM_CHART_PACKING_H
+#endif // ICM_LAYOUT_CHART_PACKING_H

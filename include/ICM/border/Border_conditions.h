@@ -21,12 +21,12 @@
 // a hole. The targets depend on u through the lengths: `solve_circle_domain` iterates
 // u <- K^{-1}(T(u)) with Anderson acceleration (doc/border_conditions.md has the numbers).
 
-#ifndef ICM_BORDER_CONDITIONS_H
-#define ICM_BORDER_CONDITIONS_H
+#ifndef ICM_BORDER_BORDER_CONDITIONS_H
+#define ICM_BORDER_BORDER_CONDITIONS_H
 
-#include <ICM/Curvature_map.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Layout.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Layout.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
@@ -861,4 +861,4 @@ private:
 
 } // namespace ICM
 
-#endif // ICM_BORDER_CONDITIONS_H
+#endif // ICM_BORDER_BORDER_CONDITIONS_H

@@ -25,8 +25,8 @@
 //   log_area_distortion = mean_f log^2(|s_f| / A_f)         (paper eq. 8 divided by #faces)
 //   area_ratio_min/max  = min/max of |s_f| / A_f
 //   qc_mean / qc_max    = area-weighted mean / max of s1/s2
-#ifndef ICM_DISTORTION_H
-#define ICM_DISTORTION_H
+#ifndef ICM_MEASURES_DISTORTION_H
+#define ICM_MEASURES_DISTORTION_H
 
 #include <ICM/internal/Unit_frame.h>
 
@@ -464,4 +464,4 @@ Distortion_measures measure_faces(const TriangleMesh& mesh, VertexPointMap vpm, 
 }  // namespace internal
 }  // namespace ICM
 
-#endif  // ICM_DISTORTION_H
+#endif  // ICM_MEASURES_DISTORTION_H

@@ -17,10 +17,10 @@
 // vertices, faces count and edge count; a flipped edge keeps its id and now joins the two
 // corners opposite it. Border edges never flip, nor do edges the caller fixes (seams).
 
-#ifndef ICM_INTRINSIC_DELAUNAY_METRIC_H
-#define ICM_INTRINSIC_DELAUNAY_METRIC_H
+#ifndef ICM_METRICS_INTRINSIC_DELAUNAY_METRIC_H
+#define ICM_METRICS_INTRINSIC_DELAUNAY_METRIC_H
 
-#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Triangle_geometry.h>
@@ -317,4 +317,4 @@ using Default_metric = Intrinsic_delaunay_metric;
 
 } // namespace ICM
 
-#endif // ICM_INTRINSIC_DELAUNAY_METRIC_H
+#endif // ICM_METRICS_INTRINSIC_DELAUNAY_METRIC_H

@@ -6,14 +6,14 @@
 // handful of factorizations (the default). The paper's curvature diffusion (Algorithm 5)
 // reaches the same metric by many explicit steps and is kept to validate it.
 
-#ifndef ICM_OPTIMAL_METRIC_H
-#define ICM_OPTIMAL_METRIC_H
+#ifndef ICM_OPTIMUM_OPTIMAL_METRIC_H
+#define ICM_OPTIMUM_OPTIMAL_METRIC_H
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/internal/Option_checks.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Option_checks.h>
 
 #include <Eigen/Core>
 
@@ -140,4 +140,4 @@ Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& i
 
 } // namespace ICM
 
-#endif // ICM_OPTIMAL_METRIC_H
+#endif // ICM_OPTIMUM_OPTIMAL_METRIC_H

@@ -6,14 +6,14 @@
 // strictly convex as soon as one vertex is fixed, with Hessian Delta_FF. Algorithm 1 is the
 // case "all vertices but one", the free-boundary optimum the case F = non-singular vertices.
 
-#ifndef ICM_INVERSE_CURVATURE_MAP_H
-#define ICM_INVERSE_CURVATURE_MAP_H
+#ifndef ICM_CURVATURE_INVERSE_CURVATURE_MAP_H
+#define ICM_CURVATURE_INVERSE_CURVATURE_MAP_H
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Dynamic_laplacian.h>
-#include <ICM/internal/Option_checks.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Option_checks.h>
 
 #include <Eigen/Core>
 
@@ -283,4 +283,4 @@ Newton_report inverse_curvature_map(const internal::Mesh_index& index, const Met
 
 } // namespace ICM
 
-#endif // ICM_INVERSE_CURVATURE_MAP_H
+#endif // ICM_CURVATURE_INVERSE_CURVATURE_MAP_H

@@ -12,8 +12,8 @@
 // the order stays good for them, so re-analysing after flips costs only the elimination
 // tree: lion-head spends 36 ms in three AMD analyses (of 89 ms in Newton) otherwise.
 
-#ifndef ICM_DYNAMIC_LAPLACIAN_H
-#define ICM_DYNAMIC_LAPLACIAN_H
+#ifndef ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
+#define ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
 
 #include <ICM/internal/Mesh_index.h>
 
@@ -359,4 +359,4 @@ private:
 
 } // namespace ICM
 
-#endif // ICM_DYNAMIC_LAPLACIAN_H
+#endif // ICM_CURVATURE_DYNAMIC_LAPLACIAN_H

@@ -7,8 +7,8 @@
 // every u gives triangles: Newton's line search keeps every face valid, and where the
 // optimum lies outside the valid region the parameterizer falls back to the circle packing.
 
-#ifndef ICM_VERTEX_SCALING_METRIC_H
-#define ICM_VERTEX_SCALING_METRIC_H
+#ifndef ICM_METRICS_VERTEX_SCALING_METRIC_H
+#define ICM_METRICS_VERTEX_SCALING_METRIC_H
 
 #include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
@@ -87,4 +87,4 @@ public:
 
 } // namespace ICM
 
-#endif // ICM_VERTEX_SCALING_METRIC_H
+#endif // ICM_METRICS_VERTEX_SCALING_METRIC_H

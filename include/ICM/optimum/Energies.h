@@ -51,14 +51,14 @@
 // so the development is the cut surface's layout and exact wherever the metric is flat off
 // the singular set (doc/energies.md).
 
-#ifndef ICM_ENERGIES_H
-#define ICM_ENERGIES_H
+#ifndef ICM_OPTIMUM_ENERGIES_H
+#define ICM_OPTIMUM_ENERGIES_H
 
-#include <ICM/Curvature_map.h>
-#include <ICM/Distortion.h>
-#include <ICM/Intrinsic_delaunay_metric.h>
-#include <ICM/Layout.h>
-#include <ICM/Vertex_scaling_metric.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/measures/Distortion.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
+#include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/internal/Circle_metric.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Triangle_geometry.h>
@@ -1017,4 +1017,4 @@ private:
 
 } // namespace ICM
 
-#endif // ICM_ENERGIES_H
+#endif // ICM_OPTIMUM_ENERGIES_H

@@ -12,15 +12,15 @@
 // Both run on the circle packing metric, whose every u is valid: the first optima of a closed
 // surface with two cones need conformal factors of e^30 that no exact metric can reach.
 
-#ifndef ICM_SINGULAR_VERTICES_H
-#define ICM_SINGULAR_VERTICES_H
+#ifndef ICM_CONES_SINGULAR_VERTICES_H
+#define ICM_CONES_SINGULAR_VERTICES_H
 
-#include <ICM/Circle_packing_metric.h>
-#include <ICM/Curvature_map.h>
-#include <ICM/Inverse_curvature_map.h>
-#include <ICM/Optimal_metric.h>
-#include <ICM/internal/Option_checks.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Option_checks.h>
 
 #include <Eigen/Core>
 
@@ -189,4 +189,4 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
 
 } // namespace ICM
 
-#endif // ICM_SINGULAR_VERTICES_H
+#endif // ICM_CONES_SINGULAR_VERTICES_H

@@ -20,10 +20,10 @@
 // is. (The Exact_predicates_inexact_constructions_kernel would decide the same, at about
 // twice the preprocessed size of everything else the disk parameterizer includes.)
 
-#ifndef ICM_BORDER_OVERLAPS_H
-#define ICM_BORDER_OVERLAPS_H
+#ifndef ICM_LAYOUT_BORDER_OVERLAPS_H
+#define ICM_LAYOUT_BORDER_OVERLAPS_H
 
-#include <ICM/Layout.h>
+#include <ICM/layout/Layout.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <CGAL/Bbox_2.h>
@@ -304,4 +304,4 @@ inline bool has_overlapping_faces(const internal::Mesh_index& index, const std::
 
 } // namespace ICM
 
-#endif // ICM_BORDER_OVERLAPS_H
+#endif // ICM_LAYOUT_BORDER_OVERLAPS_H
