@@ -62,7 +62,6 @@ public:
       status_ = status;
     return *this;
   }
-  const std::string& prefix() const { return prefix_; }
   Status status() const { return status_; }
 
 private:

@@ -273,9 +273,6 @@ Status optimum_and_layout(const Mesh_index& index, const std::vector<char>& is_s
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using Clock = std::chrono::steady_clock;
-  auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
   const int nv = index.number_of_vertices();
   Clock::time_point t = Clock::now();
   Surface_optimum<Metric, Solver> optimum(index, is_seam, is_singular, prescribed, options, energy);
@@ -369,9 +366,6 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using Clock = std::chrono::steady_clock;
-  auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
   const int nv = index.number_of_vertices();
   const bool closed = index.number_of_boundary_loops() == 0;
   const int chi = index.euler_characteristic();
