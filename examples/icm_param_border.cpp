@@ -5,6 +5,7 @@
 #include "icm_param_energy_impl.h"
 
 #include <ICM/border/Border_conditions.h>
+#include <ICM/border/Border_shape.h>
 
 namespace icm_param {
 template ICM::Parameterization_report parameterize_disk<ICM::Circular_border<Mesh>>(Mesh& mesh, const std::string& metric,

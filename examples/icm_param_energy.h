@@ -12,6 +12,10 @@
 #define ICM_PARAM_ENERGY_H
 
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
+#include <ICM/border/Border_shape.h>
+
+#include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>

@@ -7,6 +7,10 @@
 // report.
 
 #include <ICM/border/Border_conditions.h>
+#include <ICM/border/Border_shape.h>
+
+#include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
 #include <ICM/optimum/Energies.h>
 

@@ -91,7 +91,7 @@ void add_energy_cases(std::vector<Bad_option<Options>>& cases, const std::string
   add("armijo", [](E& o) { o.armijo = 0; });
   add("armijo", [](E& o) { o.armijo = 1; });
   add_newton_cases<Options>(cases, prefix + "newton.", [field](Options& o) -> ICM::Newton_options& {
-    return field(o).newton;
+    return field(o).newton.emplace();
   });
 }
 
@@ -109,7 +109,7 @@ std::vector<Bad_option<ICM::Surface_parameterization_options>> surface_cases()
     {"max_layout_length_error", [](O& o) { o.max_layout_length_error = nan_value; }},
   };
   add_newton_cases<O>(cases, "newton.", [](O& o) -> ICM::Newton_options& { return o.newton; });
-  add_newton_cases<O>(cases, "cones.newton.", [](O& o) -> ICM::Newton_options& { return o.cones.newton; });
+  add_newton_cases<O>(cases, "cones.newton.", [](O& o) -> ICM::Newton_options& { return o.cones.newton.emplace(); });
   add_energy_cases<O>(cases, "energy.", [](O& o) -> ICM::Curvature_space_options& { return o.energy; });
   return cases;
 }
@@ -207,6 +207,34 @@ TEST(Options, LowerLayersRefuseBadOptionsToo)
     index, metric, ICM::boundary_singular_set(index), u, diffusion);
   EXPECT_FALSE(diffused.converged);
   EXPECT_NE(diffused.message.find("option diffusion.step_fraction = nan"), std::string::npos) << diffused.message;
+}
+
+TEST(Options, OneNewtonOptionsServeEveryStageUnlessOneSetsItsOwn)
+{
+  ICM::Surface_parameterization_options options;
+  options.newton.tolerance = 1e-7;
+  options.newton.max_iterations = 7;
+  // Unset, the cones' and the energy's Newton are the run's.
+  EXPECT_FALSE(options.cones.newton.has_value());
+  EXPECT_FALSE(options.energy.newton.has_value());
+  EXPECT_EQ(ICM::with_newton(options.cones, options.newton).newton->tolerance, 1e-7);
+  EXPECT_EQ(ICM::with_newton(options.energy, options.newton).newton->max_iterations, 7);
+  // Set on purpose, a stage keeps its own.
+  options.cones.newton.emplace().tolerance = 1e-12;
+  EXPECT_EQ(ICM::with_newton(options.cones, options.newton).newton->tolerance, 1e-12);
+  EXPECT_EQ(ICM::with_newton(options.cones, options.newton).newton->max_iterations, 100);
+
+  // And the run's Newton reaches the cone placement: with one Newton step allowed, placing
+  // cones on a closed surface cannot converge, which the run reports from that stage.
+  Mesh sphere = read("sphere966.off");
+  auto uv = sphere.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  ICM::Surface_parameterization_options starved;
+  starved.newton.max_iterations = 1;
+  const ICM::Surface_parameterization_report report = ICM::parameterize(sphere, uv, starved);
+  EXPECT_EQ(report.status, SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM) << report.message;
+  starved.cones.newton = ICM::Newton_options();
+  const ICM::Surface_parameterization_report own = ICM::parameterize(sphere, uv, starved);
+  EXPECT_NE(own.message, report.message) << "the cones' own Newton options must take the cone placement further";
 }
 
 TEST(Options, ForeignAndNullDescriptorsAreRefused)

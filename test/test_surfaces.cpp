@@ -5,11 +5,14 @@
 
 #include <ICM/IO/read_seam_selection.h>
 #include <ICM/measures/Distortion.h>
+#include <ICM/Inverse_curvature_map_parameterizer_3.h>
 #include <ICM/parameterize.h>
 
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <CGAL/boost/graph/Seam_mesh.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/io.h>
@@ -109,6 +112,48 @@ std::map<Mesh::Vertex_index, double> cones_at_axis_extremes(const Mesh& mesh)
       cones[best] = M_PI / 2;
     }
   return cones;
+}
+
+TEST(Surfaces, BothEntryPointsSolveADiskAlike)
+{
+  // One chart solver serves both: a disk without cones gets the same optimum from the disk
+  // parameterizer and from ICM::parameterize, laid out alike up to a rigid motion and the
+  // packing's scale (every UV edge length in one ratio), with the same figures.
+  for(const std::string name : {"nefertiti.off", "three_peaks.off"})
+  {
+    Mesh mesh = read(icm_test::data_path(name));
+    auto vertex_uv = mesh.add_property_map<Mesh::Vertex_index, Point_2>("v:uv").first;
+    ICM::Inverse_curvature_map_parameterizer_3<Mesh> disk;
+    const auto bhd = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
+    ASSERT_EQ(CGAL::Surface_mesh_parameterization::parameterize(mesh, disk, bhd, vertex_uv),
+              CGAL::Surface_mesh_parameterization::OK)
+      << disk.report().message;
+    ICM::Surface_parameterization_options no_cones;
+    no_cones.automatic_cones = false;
+    no_cones.remove_overlaps = false; // the disk parameterizer only counts them
+    auto corner_uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+    const ICM::Surface_parameterization_report surface = ICM::parameterize(mesh, corner_uv, no_cones);
+    ASSERT_EQ(surface.status, CGAL::Surface_mesh_parameterization::OK) << surface.message;
+    ASSERT_EQ(surface.charts.size(), 1u);
+    const ICM::Chart_report& chart = surface.charts[0];
+    EXPECT_EQ(chart.metric, disk.report().metric) << name;
+    EXPECT_EQ(chart.newton_iterations, disk.report().newton_iterations) << name;
+    EXPECT_EQ(chart.moved_vertices, disk.report().moved_vertices) << name;
+    EXPECT_EQ(chart.overlapping_border_edges, disk.report().overlapping_border_edges) << name;
+    EXPECT_NEAR(chart.max_curvature_error, disk.report().max_curvature_error, 1e-15) << name;
+    double low = HUGE_VAL, high = 0;
+    for(auto h : mesh.halfedges())
+    {
+      if(mesh.is_border(h))
+        continue;
+      const Point_2 a = get(corner_uv, mesh.prev(h)), b = get(corner_uv, h);
+      const Point_2 p = get(vertex_uv, mesh.source(h)), q = get(vertex_uv, mesh.target(h));
+      const double ratio = std::sqrt(CGAL::squared_distance(a, b) / CGAL::squared_distance(p, q));
+      low = std::min(low, ratio);
+      high = std::max(high, ratio);
+    }
+    EXPECT_LT(high / low - 1, 1e-9) << name << ": the two layouts are not one metric";
+  }
 }
 
 TEST(Surfaces, ClosedSphereIsCutThroughItsCones)

@@ -12,15 +12,17 @@
 //                             metric, both sides of a seam one length (layout/) -> checks:
 //                             orientation, lengths, seams, border overlaps
 // (internal/Surface_component.h), and the charts are then packed side by side
-// (layout/Chart_packing.h). Options and reports: Surface_parameterization_options.h. See
+// (layout/Chart_packing.h). Options and reports: Options.h, Report.h. See
 // doc/surfaces.md.
 
 #ifndef ICM_PARAMETERIZE_H
 #define ICM_PARAMETERIZE_H
 
 #include <ICM/Status.h>
-#include <ICM/Surface_parameterization_options.h>
+#include <ICM/Options.h>
+#include <ICM/Report.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Stopwatch.h>
 #include <ICM/internal/Surface_component.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -29,7 +31,6 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -90,14 +91,13 @@ Surface_parameterization_report parameterize(
   using Solver = typename CGAL::Default::Get<SparseSolver, Default_sparse_solver>::type;
   using vertex_descriptor = typename boost::graph_traits<TriangleMesh>::vertex_descriptor;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
+  const internal::Stopwatch stopwatch;
 
   Surface_parameterization_report report;
   auto finish = [&](Error_code code, const std::string& why) {
     report.status = code;
     report.message = why;
-    report.seconds_total = std::chrono::duration<double>(Clock::now() - start).count();
+    report.seconds_total = stopwatch.total();
     return report;
   };
   if(const Status checked = check_options(options); !checked.ok())

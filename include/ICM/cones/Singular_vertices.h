@@ -15,6 +15,7 @@
 #ifndef ICM_CONES_SINGULAR_VERTICES_H
 #define ICM_CONES_SINGULAR_VERTICES_H
 
+#include <ICM/Options.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/metrics/Circle_packing_metric.h>
@@ -76,28 +77,6 @@ std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metri
   return minima;
 }
 
-struct Cone_options
-{
-  /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
-  /// of its neighbourhood changes by less than exp(2 * this). 0.6 keeps area factors within
-  /// e^1.2 ~ 3.3; on the shared meshes it took sphere966's log area from 0.22 (1.5) to
-  /// 0.028 and three_peaks' QC from 1.16 to 1.09, for more cones (doc/benchmarks.md).
-  double max_log_scale = 0.6;
-  /// At most this many interior cones (a user limit); 0 means none.
-  int max_cones = 32;
-  Newton_options newton;
-};
-
-/// Whether every field of `options` is in range (see `check_options(const Newton_options&)`).
-inline Status check_options(const Cone_options& options, const std::string& prefix = "cones.")
-{
-  return internal::Option_checks(prefix)
-    .real("max_log_scale", options.max_log_scale, 0, false)
-    .at_least("max_cones", options.max_cones, 0)
-    .nested(check_options(options.newton, prefix + "newton."))
-    .status();
-}
-
 /// What `greedy_cones` chose and how the distortion fell.
 struct Cone_selection
 {
@@ -130,6 +109,7 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
       is_singular[v] = 1;
       selection.cones.push_back(v);
     }
+  const Newton_options newton = newton_of(options.newton, Newton_options());
   Eigen::VectorXd u = metric.u0;
   for(;;)
   {
@@ -141,7 +121,7 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
       if(is_singular[v])
         u[v] = metric.u0[v];
     const Newton_report report =
-      solver.solve(Eigen::VectorXd::Zero(nv), u, options.newton);
+      solver.solve(Eigen::VectorXd::Zero(nv), u, newton);
     if(!report.converged)
     {
       selection.message = "entropy optimum with " + std::to_string(selection.cones.size()) +

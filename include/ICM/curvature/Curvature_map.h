@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <utility>
@@ -149,6 +150,16 @@ private:
 inline double gauss_bonnet_defect(const internal::Mesh_index& index, const Eigen::VectorXd& k)
 {
   return k.sum() - 2.0 * M_PI * index.euler_characteristic();
+}
+
+/// Whether a sum of `values` given curvatures misses 2 pi chi by no more than their rounding:
+/// each value may carry its own, so the tolerance grows with their number. The one
+/// Gauss-Bonnet test of every prescribed curvature (a border's, Algorithm 1's target, the
+/// user's cones).
+inline bool meets_gauss_bonnet(double defect, int values)
+{
+  constexpr double tolerance_per_value = 1e-9;
+  return std::abs(defect) <= tolerance_per_value * std::max(1, values);
 }
 
 } // namespace ICM

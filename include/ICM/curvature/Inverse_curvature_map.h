@@ -9,11 +9,13 @@
 #ifndef ICM_CURVATURE_INVERSE_CURVATURE_MAP_H
 #define ICM_CURVATURE_INVERSE_CURVATURE_MAP_H
 
+#include <ICM/Options.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
 #include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Option_checks.h>
+#include <ICM/internal/Stopwatch.h>
 
 #include <Eigen/Core>
 
@@ -23,39 +25,6 @@
 #include <vector>
 
 namespace ICM {
-
-struct Newton_options
-{
-  /// Stop when max_i |k_target_i - k_i| over the free vertices is below this (radians).
-  double tolerance = 1e-10;
-  int max_iterations = 100;
-  /// Halvings of the step before the line search gives up.
-  int max_line_search_steps = 60;
-  /// Largest change of any log radius in one step. Far from the solution Delta can be
-  /// nearly singular (circles that barely interact) and the full step is a poor model: it
-  /// can ask for radii to change by e^100. A nearly closed surface needs conformal factors
-  /// of e^-40 and reaches them in 5-9 steps with this cap (17 and one failure uncapped, 44
-  /// with a cap of 1); on disks it costs nothing (measured on the shared meshes).
-  double max_step = 10.0;
-  /// A metric with a limited valid region (vertex scaling, inversive distance) gives up
-  /// after this many consecutive steps cut below 1/32 by faces that would stop being
-  /// triangles: the target is then beyond the region's edge, and Newton crawls along it
-  /// (horse: 100 steps of 1e-4 without converging). Converging runs end with full steps.
-  int max_blocked_steps = 4;
-};
-
-/// Whether every field of `options` is in range (`ERROR_WRONG_PARAMETER` naming the first
-/// that is not); `prefix` names the struct inside its parent ("cones.newton.").
-inline Status check_options(const Newton_options& options, const std::string& prefix = "newton.")
-{
-  return internal::Option_checks(prefix)
-    .real("tolerance", options.tolerance, 0, false)
-    .at_least("max_iterations", options.max_iterations, 0)
-    .at_least("max_line_search_steps", options.max_line_search_steps, 1)
-    .real("max_step", options.max_step, 0, false)
-    .at_least("max_blocked_steps", options.max_blocked_steps, 1)
-    .status();
-}
 
 struct Newton_report
 {
@@ -99,10 +68,6 @@ public:
   Newton_report solve(const Eigen::VectorXd& k_target, Eigen::VectorXd& u,
                       const Newton_options& options = Newton_options())
   {
-    using Clock = std::chrono::steady_clock;
-    auto seconds_since = [](Clock::time_point t) {
-      return std::chrono::duration<double>(Clock::now() - t).count();
-    };
     Newton_report report;
     if(const Status checked = check_options(options); !checked.ok())
     {
@@ -110,101 +75,37 @@ public:
       return report;
     }
     const int n = laplacian_.size();
-    Eigen::VectorXd residual(n), trial_residual(n), du(n), u_trial;
-    int blocked_steps = 0;
-
-    Clock::time_point t = Clock::now();
+    Eigen::VectorXd residual(n), du(n);
+    const internal::Clock::time_point t = internal::Clock::now();
     const int invalid_at_start = curvature_.evaluate(u, k_, &w_);
     free_residual(k_target, k_, residual);
-    report.seconds_curvature += seconds_since(t);
+    report.seconds_curvature += internal::seconds_since(t);
     if(invalid_at_start > 0)
     {
-      report.message = std::to_string(invalid_at_start) +
-                       " faces are not triangles at the starting metric";
+      report.message = std::to_string(invalid_at_start) + " faces are not triangles at the starting metric";
       return report;
     }
     report.residual_history.push_back(max_norm(residual));
-
+    int blocked_steps = 0;
     while(report.residual_history.back() > options.tolerance)
     {
       if(report.iterations == options.max_iterations)
       {
         report.message = "Newton did not converge in " + std::to_string(options.max_iterations) +
-                         " iterations (curvature error " +
-                         std::to_string(report.residual_history.back()) + ")";
+                         " iterations (curvature error " + std::to_string(report.residual_history.back()) + ")";
         return report;
       }
-      t = Clock::now();
-      if(update_pattern())
-        free_residual(k_target, k_, residual); // the unknowns were numbered again
-      laplacian_.assemble(w_);
-      if(!laplacian_.factorize())
-      {
-        report.message = "the dynamic Laplacian could not be factorized (not positive definite)";
-        return report;
-      }
-      report.seconds_factorization += seconds_since(t);
-      t = Clock::now();
-      du = laplacian_.solve(residual);
-      report.seconds_solve += seconds_since(t);
-      if(!du.allFinite())
-      {
-        report.message = "the Newton step is not finite";
-        return report;
-      }
-
-      // Line search on the Ricci energy E, convex along the line, whose derivative in the
-      // step direction is g(alpha) = -residual(alpha) . du. A step is accepted when the
-      // residual shrinks, or when g is still <= 0 (E decreased all the way): either way E
-      // went down, which is what guarantees convergence to the unique solution.
-      t = Clock::now();
-      const double norm = residual.norm();
-      const double largest = du.size() ? du.cwiseAbs().maxCoeff() : 0.0;
-      double alpha = largest > options.max_step ? options.max_step / largest : 1.0;
-      // A metric whose valid region is not all of u-space (vertex scaling, inversive
-      // distance) also steps back from any trial where a face stops being a triangle.
-      int halvings = 0;
       bool blocked = false;
-      for(;; ++halvings)
-      {
-        u_trial = u;
-        for(int i = 0; i < n; ++i)
-          u_trial[laplacian_.vertex(i)] += alpha * du[i];
-        const int invalid = curvature_.evaluate(u_trial, k_trial_, &w_trial_);
-        free_residual(k_target, k_trial_, trial_residual);
-        blocked = blocked || invalid > 0;
-        const bool finite = invalid == 0 && trial_residual.allFinite();
-        if(finite && (trial_residual.norm() < norm || trial_residual.dot(du) >= 0.0))
-          break;
-        if(halvings == options.max_line_search_steps)
-        {
-          report.seconds_curvature += seconds_since(t);
-          report.left_valid_region = invalid > 0;
-          report.message = "the Newton line search stalled (curvature error " +
-                           std::to_string(report.residual_history.back()) + "): " +
-                           (invalid > 0 ? "a face would stop being a triangle, the target is "
-                                          "outside the metric's valid region"
-                                        : "the target curvature may be outside the image of K");
-          return report;
-        }
-        alpha *= 0.5;
-      }
-      report.seconds_curvature += seconds_since(t);
-      u.swap(u_trial);
-      k_.swap(k_trial_);
-      w_.swap(w_trial_);
-      residual.swap(trial_residual);
-      ++report.iterations;
-      report.step_lengths.push_back(alpha);
-      report.residual_history.push_back(max_norm(residual));
-      blocked_steps = blocked && alpha < 1.0 / 32 ? blocked_steps + 1 : 0;
+      if(!newton_direction(k_target, residual, du, report) ||
+         !line_search(k_target, options, du, u, residual, blocked, report))
+        return report;
+      blocked_steps = blocked && report.step_lengths.back() < 1.0 / 32 ? blocked_steps + 1 : 0;
       if(blocked_steps == options.max_blocked_steps && report.residual_history.back() > options.tolerance)
       {
         report.left_valid_region = true;
         report.message = "Newton is blocked by faces that would stop being triangles (curvature error " +
-                         std::to_string(report.residual_history.back()) +
-                         " after " + std::to_string(report.iterations) +
-                         " steps): the target is outside the metric's valid region";
+                         std::to_string(report.residual_history.back()) + " after " +
+                         std::to_string(report.iterations) + " steps): the target is outside the metric's valid region";
         return report;
       }
     }
@@ -212,7 +113,82 @@ public:
     return report;
   }
 
+
 private:
+  /// The Newton step du = Delta_FF^{-1} residual at the current metric.
+  bool newton_direction(const Eigen::VectorXd& k_target, Eigen::VectorXd& residual, Eigen::VectorXd& du,
+                        Newton_report& report)
+  {
+    internal::Clock::time_point t = internal::Clock::now();
+    if(update_pattern())
+      free_residual(k_target, k_, residual); // the unknowns were numbered again
+    laplacian_.assemble(w_);
+    if(!laplacian_.factorize())
+    {
+      report.message = "the dynamic Laplacian could not be factorized (not positive definite)";
+      return false;
+    }
+    report.seconds_factorization += internal::seconds_since(t);
+    t = internal::Clock::now();
+    du = laplacian_.solve(residual);
+    report.seconds_solve += internal::seconds_since(t);
+    if(!du.allFinite())
+    {
+      report.message = "the Newton step is not finite";
+      return false;
+    }
+    return true;
+  }
+
+  /// Line search on the Ricci energy E, convex along the line, whose derivative in the step
+  /// direction is g(alpha) = -residual(alpha) . du. A step is accepted when the residual
+  /// shrinks, or when g is still <= 0 (E decreased all the way): either way E went down,
+  /// which is what guarantees convergence to the unique solution. A metric whose valid
+  /// region is not all of u-space (vertex scaling, inversive distance) also steps back from
+  /// any trial where a face stops being a triangle (`blocked`). The accepted step moves u,
+  /// the curvature and the residual.
+  bool line_search(const Eigen::VectorXd& k_target, const Newton_options& options, const Eigen::VectorXd& du,
+                   Eigen::VectorXd& u, Eigen::VectorXd& residual, bool& blocked, Newton_report& report)
+  {
+    const internal::Clock::time_point t = internal::Clock::now();
+    const int n = laplacian_.size();
+    const double norm = residual.norm();
+    const double largest = du.size() ? du.cwiseAbs().maxCoeff() : 0.0;
+    double alpha = largest > options.max_step ? options.max_step / largest : 1.0;
+    for(int halvings = 0;; ++halvings)
+    {
+      u_trial_ = u;
+      for(int i = 0; i < n; ++i)
+        u_trial_[laplacian_.vertex(i)] += alpha * du[i];
+      const int invalid = curvature_.evaluate(u_trial_, k_trial_, &w_trial_);
+      free_residual(k_target, k_trial_, trial_residual_);
+      blocked = blocked || invalid > 0;
+      const bool finite = invalid == 0 && trial_residual_.allFinite();
+      if(finite && (trial_residual_.norm() < norm || trial_residual_.dot(du) >= 0.0))
+        break;
+      if(halvings == options.max_line_search_steps)
+      {
+        report.seconds_curvature += internal::seconds_since(t);
+        report.left_valid_region = invalid > 0;
+        report.message = "the Newton line search stalled (curvature error " +
+                         std::to_string(report.residual_history.back()) + "): " +
+                         (invalid > 0 ? "a face would stop being a triangle, the target is outside the metric's "
+                                        "valid region"
+                                      : "the target curvature may be outside the image of K");
+        return false;
+      }
+      alpha *= 0.5;
+    }
+    report.seconds_curvature += internal::seconds_since(t);
+    u.swap(u_trial_);
+    k_.swap(k_trial_);
+    w_.swap(w_trial_);
+    residual.swap(trial_residual_);
+    ++report.iterations;
+    report.step_lengths.push_back(alpha);
+    report.residual_history.push_back(max_norm(residual));
+    return true;
+  }
   /// A metric that flips its triangulation changes the Laplacian's pattern. Returns whether
   /// the unknowns were numbered again.
   bool update_pattern()
@@ -242,7 +218,7 @@ private:
   Curvature_map<Metric> curvature_;
   Dynamic_laplacian<SparseSolver> laplacian_;
   long pattern_version_;
-  Eigen::VectorXd k_, k_trial_;
+  Eigen::VectorXd k_, k_trial_, u_trial_, trial_residual_; // the last two: scratch of the line search
   std::vector<double> w_, w_trial_;
 };
 
@@ -263,7 +239,7 @@ Newton_report inverse_curvature_map(const internal::Mesh_index& index, const Met
     return report;
   }
   const double defect = gauss_bonnet_defect(index, k_target);
-  if(!(std::abs(defect) <= 1e-8 * std::max(1, nv)))
+  if(!meets_gauss_bonnet(defect, nv))
   {
     report.message = "the target curvature violates Gauss-Bonnet: its sum differs from 2 pi chi by " +
                      std::to_string(defect);

@@ -26,19 +26,13 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <utility>
 #include <string>
 #include <vector>
 
 namespace ICM {
 
 using Uv = std::array<double, 2>;
-
-enum class Layout_method
-{
-  Automatic,   ///< propagation below `harmonic_layout_min_faces` faces, harmonic above
-  Propagation,
-  Harmonic
-};
 
 /// The face farthest (in face hops) from the border, or face 0 on a closed mesh: unfolding
 /// from the middle keeps the face tree shallow.
@@ -95,90 +89,114 @@ struct Faces_around_vertices
   }
 };
 
-/// Unfolds the faces from the central face. Vertex c of a face entered across its edge
-/// (a, b) — in the face's orientation — is a + l_ac R(theta_a) (b - a)/|b - a|, so every
-/// face keeps the input orientation (counter-clockwise = positive area).
+/// One step of an unfolding: the vertex at `corner` of `face` placed from the face's other two.
+struct Unfolding_step
+{
+  int face, corner;
+};
+
+/// Places corner c of a face whose corners are the points `w` of `z`, from the two already
+/// placed, a the next corner and b the one after: z_c = z_a + l_ac R(theta_a) (z_b - z_a) /
+/// |z_b - z_a|, the metric's length l_ac and angle theta_a. Every face so keeps the input
+/// orientation (counter-clockwise = positive area), and every new edge has the metric's
+/// length rather than a ratio of lengths times an edge already placed, which would carry
+/// that edge's relative error on.
+inline void place_corner(const std::array<int, 3>& w, int c, double l_ac, double theta_a, std::vector<Uv>& z)
+{
+  const Uv &a = z[w[(c + 1) % 3]], &b = z[w[(c + 2) % 3]];
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double scale = l_ac / std::hypot(dx, dy);
+  const double cs = std::cos(theta_a) * scale, sn = std::sin(theta_a) * scale;
+  z[w[c]] = {a[0] + cs * dx - sn * dy, a[1] + sn * dx + cs * dy};
+}
+
+/// Unfolds faces given by their corners (`corners[f]`: ids of points of `z`, vertices or the
+/// wedges of a cut) and edges (`face_edges`, into `lengths`) from face `root`, whose first
+/// edge is put on the x axis. `angle(f, c)` is the metric's angle at corner c of face f.
+/// Returns the steps in their order, the root's third corner first.
 ///
 /// The order is not breadth first but least estimated error first (Dijkstra): placing c from
 /// (a, b) carries a's error and turns the direction of (b - a), known to (err_a + err_b) /
 /// l_ab, through l_ac, so err_c ~ err_a + (err_a + err_b) l_ac / l_ab. Entering a thin face
 /// through its short edge multiplies the error by its aspect ratio; breadth first did that
-/// wherever the face tree went (armadillo with 32 cones: edges off by 1e-7 of their
-/// length), this order takes every vertex from its best conditioned chain.
-///
-/// `angles` are the metric's own per-face angles (`Curvature_map::face_angles`), which keep
-/// full relative precision in faces whose radii differ by e^30; recomputed from the lengths,
-/// the tiny angles of such faces lose their digits.
-inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& index,
-                                                  const std::vector<double>& lengths,
-                                                  const std::vector<Triangle_angles>& angles, int root)
+/// wherever the face tree went, this order takes every point from its best conditioned
+/// chain. The estimate only orders the candidates, in units of length (the order does not
+/// change with the scale); it grows geometrically with the hops from the root and may
+/// overflow to infinity on a long strip, so "placed" is a flag of its own: each (face,
+/// corner) is offered at most once and the queue holds at most 3 F. The order depends on the
+/// lengths only through comparisons.
+template <class Angle>
+std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corners,
+                                   const std::vector<std::array<int, 3>>& face_edges,
+                                   const std::vector<double>& lengths, const Angle& angle, int root,
+                                   std::vector<Uv>& z)
 {
-  const int nf = index.number_of_faces(), nv = index.number_of_vertices();
-  std::vector<Uv> uv(nv, Uv{0.0, 0.0});
-  if(nf == 0)
-    return uv;
-  const Faces_around_vertices around(index);
-  const std::vector<int>&first = around.first, &ring = around.faces;
-
+  const int points = static_cast<int>(z.size());
+  std::vector<Unfolding_step> steps;
+  steps.reserve(points);
+  const Faces_around_vertices around(corners, points);
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  // The estimate only orders the candidates: it grows geometrically with the hops from the
-  // root and may overflow to infinity on a long strip, so "placed" is a flag of its own;
-  // each (face, corner) is then offered at most once and the queue holds at most 3 F.
-  std::vector<double> error(nv, 0.0);
-  std::vector<char> is_placed(nv, 0);
-  auto placed = [&](int v) { return is_placed[v] != 0; };
+  std::vector<double> error(points, 0.0);
+  std::vector<char> placed(points, 0);
+  const std::array<int, 3>& r = corners[root];
+  const double root_length = lengths[face_edges[root][2]];
+  z[r[0]] = {0.0, 0.0};
+  z[r[1]] = {root_length, 0.0};
+  place_corner(r, 2, lengths[face_edges[root][1]], angle(root, 0), z);
+  steps.push_back({root, 2});
+  for(int p : r)
   {
-    const auto& v = index.faces[root];
-    const auto& e = index.face_edges[root];
-    const double l01 = lengths[e[2]], l02 = lengths[e[1]], theta0 = angles[root].angle[0];
-    uv[v[0]] = {0.0, 0.0};
-    uv[v[1]] = {l01, 0.0};
-    uv[v[2]] = {l02 * std::cos(theta0), l02 * std::sin(theta0)};
-    for(int c = 0; c < 3; ++c)
-    {
-      error[v[c]] = eps * std::max(l01, l02);
-      is_placed[v[c]] = 1;
-    }
+    error[p] = eps * root_length;
+    placed[p] = 1;
   }
-  // Candidates: (estimated error of the third vertex, face, corner of that vertex).
+  // Candidates: (estimated error of the third point, (face, corner of that point)).
   using Candidate = std::pair<double, std::pair<int, int>>;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
-  auto offer_faces_around = [&](int v) {
-    for(int i = first[v]; i < first[v + 1]; ++i)
+  auto offer_faces_around = [&](int p) {
+    for(int i = around.first[p]; i < around.first[p + 1]; ++i)
     {
-      const int g = ring[i];
-      const auto& f = index.faces[g];
+      const int f = around.faces[i];
+      const std::array<int, 3>& w = corners[f];
       for(int c = 0; c < 3; ++c)
       {
-        const int a = f[(c + 1) % 3], b = f[(c + 2) % 3];
-        if(placed(f[c]) || !placed(a) || !placed(b))
+        const int a = w[(c + 1) % 3], b = w[(c + 2) % 3];
+        if(placed[w[c]] || !placed[a] || !placed[b])
           continue;
-        const double l_ab = lengths[index.face_edges[g][c]], l_ac = lengths[index.face_edges[g][(c + 2) % 3]];
-        queue.push({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {g, c}});
+        const double l_ab = lengths[face_edges[f][c]], l_ac = lengths[face_edges[f][(c + 2) % 3]];
+        queue.push({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {f, c}});
       }
     }
   };
-  for(int v : index.faces[root])
-    offer_faces_around(v);
+  for(int p : r)
+    offer_faces_around(p);
   while(!queue.empty())
   {
     const auto [estimate, where] = queue.top();
     queue.pop();
-    const auto [g, c] = where;
-    const int third = index.faces[g][c];
-    if(placed(third))
+    const auto [f, c] = where;
+    const int third = corners[f][c];
+    if(placed[third])
       continue;
-    const int a = index.faces[g][(c + 1) % 3], b = index.faces[g][(c + 2) % 3];
-    const double theta = angles[g].angle[(c + 1) % 3];
-    const double l_ac = lengths[index.face_edges[g][(c + 2) % 3]];
-    const double dx = uv[b][0] - uv[a][0], dy = uv[b][1] - uv[a][1];
-    const double scale = l_ac / std::hypot(dx, dy);
-    const double cs = std::cos(theta) * scale, sn = std::sin(theta) * scale;
-    uv[third] = {uv[a][0] + cs * dx - sn * dy, uv[a][1] + sn * dx + cs * dy};
+    place_corner(corners[f], c, lengths[face_edges[f][(c + 2) % 3]], angle(f, (c + 1) % 3), z);
+    steps.push_back({f, c});
     error[third] = estimate;
-    is_placed[third] = 1;
+    placed[third] = 1;
     offer_faces_around(third);
   }
+  return steps;
+}
+
+/// The metric laid out by unfolding its faces from `root` (`unfold`). `angles` are the
+/// metric's own per-face angles (`Curvature_map::face_angles`), which keep full relative
+/// precision in faces whose radii differ by e^30; recomputed from the lengths, the tiny
+/// angles of such faces lose their digits.
+inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& index,
+                                                  const std::vector<double>& lengths,
+                                                  const std::vector<Triangle_angles>& angles, int root)
+{
+  std::vector<Uv> uv(index.number_of_vertices(), Uv{0.0, 0.0});
+  if(index.number_of_faces() > 0)
+    unfold(index.faces, index.face_edges, lengths, [&](int f, int c) { return angles[f].angle[c]; }, root, uv);
   return uv;
 }
 

@@ -9,6 +9,7 @@
 #ifndef ICM_OPTIMUM_OPTIMAL_METRIC_H
 #define ICM_OPTIMUM_OPTIMAL_METRIC_H
 
+#include <ICM/Options.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/metrics/Circle_packing_metric.h>
@@ -53,25 +54,6 @@ Newton_report free_boundary_optimum(const internal::Mesh_index& index, const Met
     is_free[v] = !is_singular[v];
   Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, is_free);
   return free_boundary_optimum(solver, metric, u, options);
-}
-
-struct Diffusion_options
-{
-  double tolerance = 1e-10;     ///< on max_N |k_i|
-  int max_iterations = 2000000;
-  /// Fraction of the explicit stability bound 1 / max_i Delta_ii (Gershgorin: Delta's
-  /// largest eigenvalue is at most twice its largest diagonal entry).
-  double step_fraction = 0.95;
-};
-
-/// Whether every field of `options` is in range (see `check_options(const Newton_options&)`).
-inline Status check_options(const Diffusion_options& options, const std::string& prefix = "diffusion.")
-{
-  return internal::Option_checks(prefix)
-    .real("tolerance", options.tolerance, 0, false)
-    .at_least("max_iterations", options.max_iterations, 0)
-    .real("step_fraction", options.step_fraction, 0, false, 1, true)
-    .status();
 }
 
 struct Diffusion_report

@@ -75,6 +75,82 @@ inline double theorem_3_2_residual(const Eigen::VectorXd& h, const std::vector<c
   return spread > 0 ? (hi - lo) / spread : 0.0;
 }
 
+namespace internal {
+
+/// The admissible curvature nearest K(u): flat off S, the Gauss-Bonnet defect spread over S.
+template <class Metric>
+Eigen::VectorXd nearest_admissible_curvature(const Mesh_index& index, Curvature_map<Metric>& curvature,
+                                             const std::vector<char>& is_singular, const std::vector<int>& singular,
+                                             const Eigen::VectorXd& u)
+{
+  Eigen::VectorXd k;
+  curvature.evaluate(u, k);
+  double defect = 2.0 * M_PI * index.euler_characteristic();
+  for(int v : singular)
+    defect -= k[v];
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    if(!is_singular[v])
+      k[v] = 0;
+  for(int v : singular)
+    k[v] += defect / singular.size();
+  return k;
+}
+
+/// grad_k E = Delta^{-1} grad_u E at the state (up to a constant), or the energy's own.
+template <class Energy, class Metric, class SparseSolver>
+bool curvature_gradient(const Energy& energy, const Energy_state<Metric>& state,
+                        Dynamic_laplacian<SparseSolver>& laplacian, Eigen::VectorXd& g, Energy_gradient& partials,
+                        int& factorizations, Eigen::VectorXd& h)
+{
+  if constexpr(has_curvature_gradient<Energy, Metric>)
+  {
+    energy.gradient_k(state, h);
+    return true;
+  }
+  else
+  {
+    energy_gradient(energy, state, g, partials);
+    Eigen::VectorXd y;
+    if(!solve_on_free_vertices(laplacian, state, g, y, factorizations))
+      return false;
+    h = Eigen::VectorXd::Zero(state.mesh().number_of_vertices());
+    for(int i = 0; i < laplacian.size(); ++i)
+      h[laplacian.vertex(i)] = y[i];
+    return true;
+  }
+}
+
+/// A step k_S - lambda p with sufficient decrease of E, its metric and gradient measured by
+/// `measure(k, u, value, h)`; false when none was found.
+template <class Measure>
+bool line_search_in_k(Measure& measure, const std::vector<int>& singular, const Eigen::VectorXd& k,
+                      const Eigen::VectorXd& u, const Eigen::VectorXd& p, double value, bool has_value,
+                      const Curvature_space_options& options, double& lambda, Eigen::VectorXd& k_trial,
+                      Eigen::VectorXd& u_trial, double& value_trial, Eigen::VectorXd& h_trial)
+{
+  const double dphi0 = -p.squaredNorm();
+  lambda = std::min(lambda, options.max_step / p.cwiseAbs().maxCoeff());
+  for(int trial = 0; trial < options.max_line_search_steps; ++trial)
+  {
+    k_trial = k;
+    for(std::size_t s = 0; s < singular.size(); ++s)
+      k_trial[singular[s]] -= lambda * p[s];
+    u_trial = u;
+    if(!measure(k_trial, u_trial, value_trial, h_trial))
+    {
+      lambda *= 0.25;
+      continue;
+    }
+    const double dphi = -h_trial.dot(Eigen::VectorXd(k - k_trial)) / lambda;
+    if(sufficient_decrease(has_value, value, dphi0, value_trial, dphi, lambda, options.armijo))
+      return true;
+    lambda = backtrack(has_value, value, dphi0, value_trial, dphi, lambda);
+  }
+  return false;
+}
+
+} // namespace internal
+
 /// The paper's Algorithm 4: projected gradient in curvature space for the singular set
 /// `is_singular`, from the admissible curvature nearest K(u) (k_N = 0, the Gauss-Bonnet
 /// defect spread over S); `u` (u0 when empty) receives the optimum, normalised so that
@@ -84,14 +160,12 @@ Curvature_space_report minimize_energy_by_projected_gradient(
   const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_singular,
   const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options())
 {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = internal::Clock::now();
   Curvature_space_report report;
   constexpr bool has_value = has_energy_value<Energy, Metric>;
   const int nv = index.number_of_vertices();
   const std::vector<int> singular = internal::singular_list(is_singular);
-  report.message = check_options(options).message;
-  if(report.message.empty())
-    report.message = internal::singular_set_problem(index, metric, singular);
+  report.message = internal::optimizer_refusal(options, index, metric, singular);
   if(!report.message.empty())
     return report;
   double value = 0;
@@ -113,17 +187,7 @@ Curvature_space_report minimize_energy_by_projected_gradient(
   Energy_gradient partials;
   Eigen::VectorXd g;
 
-  // The admissible curvature nearest K(u).
-  Eigen::VectorXd k;
-  curvature.evaluate(u, k);
-  double defect = 2.0 * M_PI * index.euler_characteristic();
-  for(int v : singular)
-    defect -= k[v];
-  for(int v = 0; v < nv; ++v)
-    if(!is_singular[v])
-      k[v] = 0;
-  for(int v : singular)
-    k[v] += defect / singular.size();
+  Eigen::VectorXd k = internal::nearest_admissible_curvature(index, curvature, is_singular, singular, u);
 
   // u = K^{-1}(k), then E and the projected grad_k E there.
   // The inner K^{-1} is solved to a thousandth of the outer tolerance: Theorem 3.2's figure
@@ -131,8 +195,8 @@ Curvature_space_report minimize_energy_by_projected_gradient(
   // u-square, outer tolerance 1e-8): with the inner 1e-10 Algorithm 4 stalls at the residual
   // 5e-6 (line search without decrease, u 0.08 away from the optimum, E equal to 1e-12); with
   // 1e-11 it converges in 2398 steps, with 1e-13 in 2777.
-  Newton_options inner = options.newton;
-  inner.tolerance = std::min(options.newton.tolerance, 1e-3 * options.tolerance);
+  Newton_options inner = newton_of(options.newton, Newton_options());
+  inner.tolerance = std::min(inner.tolerance, 1e-3 * options.tolerance);
   auto measure = [&](const Eigen::VectorXd& target, Eigen::VectorXd& x, double& value, Eigen::VectorXd& h) {
     const Newton_report newton = icm.solve(target, x, inner);
     report.newton_iterations += newton.iterations;
@@ -142,20 +206,8 @@ Curvature_space_report minimize_energy_by_projected_gradient(
     if(!state.update(curvature, x))
       return false;
     value = energy_value(energy, state);
-    if constexpr(has_curvature_gradient<Energy, Metric>)
-      energy.gradient_k(state, h);
-    else
-    {
-      energy_gradient(energy, state, g, partials);
-      Dynamic_laplacian<SparseSolver>& laplacian = icm.laplacian();
-      Eigen::VectorXd y;
-      if(!internal::solve_on_free_vertices(laplacian, state, g, y, report.factorizations))
-        return false;
-      h = Eigen::VectorXd::Zero(nv);
-      for(int i = 0; i < laplacian.size(); ++i)
-        h[laplacian.vertex(i)] = y[i];
-    }
-    return h.allFinite();
+    return internal::curvature_gradient(energy, state, icm.laplacian(), g, partials, report.factorizations, h) &&
+           h.allFinite();
   };
   auto projected = [&](const Eigen::VectorXd& h) {
     Eigen::VectorXd p(singular.size());
@@ -183,30 +235,9 @@ Curvature_space_report minimize_energy_by_projected_gradient(
     if(report.iterations == options.max_iterations)
       return fail("not converged in " + std::to_string(options.max_iterations) +
                   " iterations (Theorem 3.2 residual " + std::to_string(report.final_residual) + ")");
-    const double dphi0 = -p.squaredNorm();
-    lambda = std::min(lambda, options.max_step / p.cwiseAbs().maxCoeff());
-    bool accepted = false;
     double value_trial = 0;
-    for(int trial = 0; trial < options.max_line_search_steps; ++trial)
-    {
-      k_trial = k;
-      for(std::size_t s = 0; s < singular.size(); ++s)
-        k_trial[singular[s]] -= lambda * p[s];
-      u_trial = u;
-      if(!measure(k_trial, u_trial, value_trial, h_trial))
-      {
-        lambda *= 0.25;
-        continue;
-      }
-      const double dphi = -h_trial.dot(Eigen::VectorXd(k - k_trial)) / lambda;
-      if(internal::sufficient_decrease(has_value, value, dphi0, value_trial, dphi, lambda, options.armijo))
-      {
-        accepted = true;
-        break;
-      }
-      lambda = internal::backtrack(has_value, value, dphi0, value_trial, dphi, lambda);
-    }
-    if(!accepted)
+    if(!internal::line_search_in_k(measure, singular, k, u, p, value, has_value, options, lambda, k_trial, u_trial,
+                                   value_trial, h_trial))
       return fail("the line search found no decrease (Theorem 3.2 residual " +
                   std::to_string(report.final_residual) + ")");
     // Barzilai-Borwein: the next trial step from the change of the projected gradient.
