@@ -202,6 +202,7 @@ private:
   void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k,
                      Eigen::VectorXd& residual) const
   {
+    residual.resize(laplacian_.size());
     for(int i = 0; i < laplacian_.size(); ++i)
     {
       const int v = laplacian_.vertex(i);
