@@ -19,6 +19,8 @@ Runs (each one cache file, RUN.jsonl, whose first line records how it was made):
            (meshes above --big-faces faces with --runs 1): sections disks, energies,
            nondisk and the circle domains of border
   icm      compare --methods icm on the disks: with the icm rows of `all`, section surfaces
+  senergies  compare --methods icm,icm_u_square,... on small surfaces that are not disks:
+           section surface-energies
   opened   compare --open on the closed genus-0 meshes: section opened
   border   icm_param --boundary circle|square --json on some disks: section border
   scaling  scaling.sh with KMAX=--scaling-kmax into the cache: section scaling-short
@@ -61,10 +63,16 @@ CLOSED_GENUS_0 = ["sphere966.off", "cow.off", "bull.off", "camel.off", "bear.off
 BORDER_SHAPES = [("three_peaks.off", "square"), ("lion-head.off", "square"),
                  ("horse.obj", "square")]
 OPENED_METHODS = "icm_free_boundary,lscm,arap,dcm,mvc"
+# Every energy through ICM::parameterize on surfaces that are not disks.
+SURFACE_ENERGY_MESHES = ["sphere966.off", "pig.off", "cow.off", "eight.off", "elk.off",
+                         "rotor.off", "femur.off", "elephant.off", "head.off",
+                         "mech-holes-shark.off", "knot1.off"]
+SURFACE_ENERGY_METHODS = "icm,icm_u_square,icm_area,icm_angle,icm_log_area"
 
 SECTIONS = {  # section: the runs it reads
     "disks": ["all"], "energies": ["all"], "nondisk": ["all"], "surfaces": ["all", "icm"],
-    "opened": ["opened"], "border": ["all", "border"], "scaling": [], "scaling-short": ["scaling"],
+    "surface-energies": ["senergies"], "opened": ["opened"], "border": ["all", "border"],
+    "scaling": [], "scaling-short": ["scaling"],
 }
 REGISTRY_METRICS = ["icm_free_boundary", "icm_vertex_scaling", "icm_inversive_distance",
                     "icm_circle_packing"]
@@ -196,6 +204,9 @@ def run(name, a, dirs):
     elif name == "icm":
         rows, cmds = compare_rows(a, meshes(DISKS + OTHER_DISKS), ["--methods", "icm"])
         rows = [r for r in rows if "genus" not in r]  # the others are in run all
+    elif name == "senergies":
+        rows, cmds = compare_rows(a, meshes(SURFACE_ENERGY_MESHES),
+                                  ["--methods", SURFACE_ENERGY_METHODS])
     elif name == "opened":
         paths = meshes(CLOSED_GENUS_0)
         rows, cmds = compare_rows(a, paths, ["--open", "--methods", OPENED_METHODS])
@@ -396,6 +407,30 @@ def section_surfaces(data):
     return "\n".join(out)
 
 
+def section_surface_energies(data):
+    _, rows = data["senergies"]
+    methods = SURFACE_ENERGY_METHODS.split(",")
+    out = ["| mesh | faces | genus / loops | method | cones | charts | log area distortion "
+           "| QC mean | flipped | border crossings | energy steps | time (s) | time / entropy's "
+           "| status |",
+           "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+    for _, group in by_mesh([r for r in rows if "genus" in r], methods):
+        entropy = next((r for r in group if r["method"] == "icm"), None)
+        for i, r in enumerate(group):
+            ratio = ""
+            if entropy and entropy.get("seconds") and r.get("seconds") and r is not entropy:
+                ratio = f'{r["seconds"] / entropy["seconds"]:.1f}'
+            out.append("| " + " | ".join([
+                r["mesh"] if i == 0 else "", str(r["faces"]) if i == 0 else "",
+                f'{r["genus"]} / {r["loops"]}' if i == 0 else "", label(r),
+                integer(r.get("cones")), integer(r.get("charts")),
+                num(r.get("log_area_distortion"), 3), num(r.get("qc_mean"), 3),
+                integer(r.get("flipped")), integer(r.get("border_crossings")),
+                integer(r.get("energy_iterations")), sec(r.get("seconds")), ratio,
+                cell(r["status"])]) + " |")
+    return "\n".join(out)
+
+
 def section_opened(data):
     _, rows = data["opened"]
     methods = OPENED_METHODS.split(",")
@@ -443,7 +478,8 @@ def section_scaling(series):
 
 
 RENDER = {"disks": section_disks, "energies": section_energies, "nondisk": section_nondisk,
-          "surfaces": section_surfaces, "opened": section_opened, "border": section_border,
+          "surfaces": section_surfaces, "surface-energies": section_surface_energies,
+          "opened": section_opened, "border": section_border,
           "scaling-short": section_scaling_short}
 
 
