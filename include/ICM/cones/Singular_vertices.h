@@ -8,7 +8,7 @@
 // - `greedy_cones` (Ben-Chen, Gotsman, Bunin 2008; Springborn, Schroeder, Pinkall 2008) adds
 //   cones where the current entropy optimum's |u - u0| is largest, and re-solves
 //   warm-started (a few far-apart cones per round once there are several). Each cone removes the worst area distortion left, so the area figure falls
-//   fastest with it (measured in doc/benchmarks.md); it is the default.
+//   fastest with it (doc/benchmarks.md, Every surface); it is the default.
 // Both run on the circle packing metric, whose every u is valid: the first optima of a closed
 // surface with two cones need conformal factors of e^30 that no exact metric can reach.
 
@@ -80,8 +80,8 @@ struct Cone_options
 {
   /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
   /// of its neighbourhood changes by less than exp(2 * this). 0.6 keeps area factors within
-  /// e^1.2 ~ 3.3; on the shared meshes it took sphere966's log area from 0.22 (1.5) to
-  /// 0.028 and three_peaks' QC from 1.16 to 1.09, for more cones (doc/benchmarks.md).
+  /// e^1.2 ~ 3.3. Chosen by measurement against 1.5: on the shared meshes it lowers the log
+  /// area distortion and the QC for more cones (doc/benchmarks.md, Every surface).
   double max_log_scale = 0.6;
   /// At most this many interior cones (a user limit); 0 means none.
   int max_cones = 32;

@@ -34,13 +34,15 @@ struct Newton_options
   /// Largest change of any log radius in one step. Far from the solution Delta can be
   /// nearly singular (circles that barely interact) and the full step is a poor model: it
   /// can ask for radii to change by e^100. A nearly closed surface needs conformal factors
-  /// of e^-40 and reaches them in 5-9 steps with this cap (17 and one failure uncapped, 44
-  /// with a cap of 1); on disks it costs nothing (measured on the shared meshes).
+  /// of e^-40 and reaches them in a few steps with this cap (more steps and failures
+  /// uncapped, many more with a cap of 1); on disks it costs nothing (chosen by measurement
+  /// on the shared meshes: the Newton iterations of doc/benchmarks.md, Nearly closed meshes).
   double max_step = 10.0;
   /// A metric with a limited valid region (vertex scaling, inversive distance) gives up
   /// after this many consecutive steps cut below 1/32 by faces that would stop being
   /// triangles: the target is then beyond the region's edge, and Newton crawls along it
-  /// (horse: 100 steps of 1e-4 without converging). Converging runs end with full steps.
+  /// (on the horse, a hundred tiny steps without converging). Converging runs end with full
+  /// steps.
   int max_blocked_steps = 4;
 };
 
