@@ -160,10 +160,9 @@ public:
   /// Rebuilds the pattern from the edges of the index (after edge flips) and analyses it
   /// again; the next solve needs a new factorization. Flips can make the fill-reducing order
   /// stale: a first Newton step's flips of a small fraction of the edges can grow the factor
-  /// by a sixth. When the
-  /// solver reports its fill (`factor_nonzeros()`) and it grew by more than
-  /// `max_fill_growth` since the unknowns were numbered, they are numbered again: AMD costs
-  /// a fraction of a factorization there, and a factor 10% larger costs more than that
+  /// by a sixth. When the solver reports its fill (`factor_nonzeros()`) and it grew by more
+  /// than `max_fill_growth` since the unknowns were numbered, they are numbered again: AMD
+  /// costs a fraction of a factorization there, and a factor 10% larger costs more than that
   /// over the remaining Newton steps. Returns whether the unknowns were renumbered.
   bool rebuild_pattern(double max_fill_growth = 0.1)
   {
