@@ -28,7 +28,7 @@ Section scaling renders a series written earlier by scaling.sh (--scaling-series
 is too slow to rerun here.
 
 --from FILE... reads cache files instead of running (a file without the first line is
-taken to be the run its name says: all.jsonl, icm.jsonl, ...). --meshes replaces the mesh
+taken to be the run its name says: all.jsonl, icm.jsonl, ...); runs it lacks are made. --meshes replaces the mesh
 list of every compare run; each section shows the rows that apply to it.
 """
 
@@ -191,6 +191,7 @@ def compare_rows(a, meshes, extra, big=True):
 
 
 def run(name, a, dirs):
+    start_load, started = os.getloadavg()[0], now()
     def meshes(default):
         names = a.meshes or default
         found = [find_mesh(n, dirs) for n in names]
@@ -242,7 +243,7 @@ def run(name, a, dirs):
     else:
         raise SystemExit(f"tables: unknown run {name}")
     binary = a.icm_param if name == "border" else a.compare
-    meta = {"run": name, "machine": machine(), "date": now(),
+    meta = {"run": name, "machine": machine(), "date": started, "load": start_load,
             "commit": a.commit or commit_of(binary),
             "commands": [short(cmd) for cmd in cmds],
             "time_limit": a.time_limit, "big_faces": a.big_faces}
@@ -483,28 +484,26 @@ RENDER = {"disks": section_disks, "energies": section_energies, "nondisk": secti
           "scaling-short": section_scaling_short}
 
 
-def header(section, metas, argv_hint, note):
-    """One line: machine, date, commit, how to regenerate."""
-    parts = []
-    seen = set()
-    for m in metas:
-        key = (m["machine"], m["date"], m["commit"])
-        if key in seen:
-            continue
-        seen.add(key)
-        parts.append(f'{m["machine"]}; {m["date"]}; commit {m["commit"]}')
-    text = ("Generated: " + " / ".join(parts) + f"; regenerate with `{argv_hint}`")
-    if note:
-        text += f"; {note}"
+def header(metas, hint, rendered_from):
+    """One line: machine, date, commit, the command that regenerates the section, and the
+    commands that ran."""
+    def joined(key):
+        values = []
+        for m in metas:
+            if m.get(key) not in values:
+                values.append(m.get(key))
+        return ", ".join(str(v) for v in values)
+    loads = [f'{m["load"]:.1f}' for m in metas if m.get("load") is not None]
+    text = f"Measured on {joined('machine')}, {joined('date')}"
+    if loads:
+        text += f" (load average {', '.join(loads)} at the start)"
+    text += f", commit {joined('commit')}; regenerate with `{hint}`"
+    commands = [c for m in metas for c in m.get("commands", [])]
+    if commands:
+        text += "; ran " + "; ".join(f"`{c}`" for c in commands)
+    if rendered_from:
+        text += "; rendered from " + ", ".join(f"`{f}`" for f in rendered_from)
     return "_" + text + "._"
-
-
-def run_notes(metas):
-    notes = []
-    for m in metas:
-        if m.get("commands"):
-            notes.append("ran " + "; ".join(f"`{c}`" for c in m["commands"]))
-    return "; ".join(notes)
 
 
 def replace_section(doc, name, body):
@@ -531,7 +530,8 @@ def main():
                     "replacing every run's list")
     ap.add_argument("--mesh-dir", action="append", default=[], help="look for meshes here first")
     ap.add_argument("--from", dest="sources", nargs="+", metavar="FILE",
-                    help="read these cache files (RUN.jsonl) instead of running")
+                    help="read these cache files (RUN.jsonl) instead of running; the runs "
+                    "they lack are made")
     ap.add_argument("--compare", default=os.path.join(ROOT, "build", "benchmark", "compare"))
     ap.add_argument("--icm-param", default=os.path.join(ROOT, "build", "examples", "icm_param"))
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "tables"),
@@ -559,20 +559,16 @@ def main():
         needed += [r for r in SECTIONS[s] if r not in needed]
 
     data = {}
-    if a.sources:
-        for path in a.sources:
-            meta, rows = load(path)
-            data[meta["run"]] = (meta, rows)
-        missing = [r for r in needed if r not in data]
-        if missing:
-            raise SystemExit(f"tables: --from has no run {', '.join(missing)} "
-                             f"(needed by {', '.join(sections)})")
-    else:
-        for tool in [a.compare] + ([a.icm_param] if "border" in needed else []):
+    for path in a.sources or []:
+        meta, rows = load(path)
+        data[meta["run"]] = (meta, rows)
+    missing = [r for r in needed if r not in data]
+    if missing:
+        for tool in [a.compare] + ([a.icm_param] if "border" in missing else []):
             if not os.access(tool, os.X_OK):
                 raise SystemExit(f"tables: {tool} is not an executable; build it (doc/benchmarks.md)")
         dirs = mesh_dirs(a.mesh_dir)
-        for r in needed:
+        for r in missing:
             data[r] = run(r, a, dirs)
 
     with open(a.doc, encoding="utf-8") as f:
@@ -591,11 +587,8 @@ def main():
             body = line + "\n\n" + section_scaling(series)
         else:
             metas = [data[r][0] for r in SECTIONS[s]]
-            note = run_notes(metas)
-            if a.sources:
-                note = "rendered from " + ", ".join(relative(m["file"]) for m in metas) + \
-                    ("; " + note if note else "")
-            body = header(s, metas, hint, note) + "\n\n" + RENDER[s](data)
+            rendered = [relative(m["file"]) for m in metas if m.get("file")]
+            body = header(metas, hint, rendered) + "\n\n" + RENDER[s](data)
         if a.print:
             print(f"<!-- {s} -->\n{body}\n")
         else:
