@@ -547,11 +547,14 @@ def main():
     ap.add_argument("--from", dest="sources", nargs="+", metavar="FILE",
                     help="read these cache files (RUN.jsonl) instead of running; the runs "
                     "they lack are made")
-    ap.add_argument("--compare", default=os.path.join(ROOT, "build", "benchmark", "compare"))
-    ap.add_argument("--icm-param", default=os.path.join(ROOT, "build", "examples", "icm_param"))
+    ap.add_argument("--compare", default=os.path.join(ROOT, "build", "benchmark", "compare"),
+                    help="the compare binary (default: build/benchmark/compare)")
+    ap.add_argument("--icm-param", default=os.path.join(ROOT, "build", "examples", "icm_param"),
+                    help="the icm_param binary (default: build/examples/icm_param)")
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "tables"),
                     help="where the runs' JSON lines go (default: build/tables)")
-    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "benchmarks.md"))
+    ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "benchmarks.md"),
+                    help="the document to rewrite (default: doc/benchmarks.md)")
     ap.add_argument("--time-limit", type=float, default=60, help="seconds per run (default 60)")
     ap.add_argument("--big-faces", type=int, default=15000,
                     help="meshes with more faces get --runs 1 (default 15000)")
