@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Short Markdown table of `compare --json` lines for surfaces that are not disks.
 
-    benchmark/nondisk_table.py RESULTS.jsonl... > doc/nondisk_table.md
+    benchmark/nondisk_table.py RESULTS.jsonl...
 
 One row per (mesh, method): faces, genus / boundary loops, time, the log area distortion
 (paper eq. 8 divided by the face count: the unweighted mean over faces of log^2(s_f / A_f)),
 QC mean, flipped faces, and a note (ICM's cones, seams and charts and its metric, the cut
-CGAL's methods ran on, or why a run failed). Rows of disk meshes (no "genus" key) are left out. See doc/benchmarks.md.
+CGAL's methods ran on, or why a run failed). Rows of disk meshes (no "genus" key) are left out.
+benchmark/tables.py uses table() for a generated section of doc/benchmarks.md.
 """
 
 import json
@@ -53,14 +54,11 @@ def note(r):
     return ""
 
 
-def main(paths):
-    rows = []
-    for path in paths:
-        with open(path) as f:
-            rows += [json.loads(line) for line in f if line.strip()]
-    print("| mesh | faces | genus / loops | method | time (s) | log area distortion | QC mean "
-          "| flips | note |")
-    print("|---|---:|---|---|---:|---:|---:|---:|---|")
+def table(rows):
+    """The Markdown table of the rows of surfaces that are not disks, one line a row."""
+    out = ["| mesh | faces | genus / loops | method | time (s) | log area distortion | QC mean "
+           "| flips | note |",
+           "|---|---:|---|---|---:|---:|---:|---:|---|"]
     last = None
     for r in rows:
         if "genus" not in r:
@@ -68,11 +66,20 @@ def main(paths):
         first = r["mesh"] != last
         last = r["mesh"]
         topo = f'{r["genus"]} / {r["loops"]}'
-        print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+        out.append("| {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
             r["mesh"] if first else "", r["faces"] if first else "", topo if first else "",
             r["method"], seconds(r["seconds"]), fmt(r["log_area_distortion"]),
             fmt(r["qc_mean"]), "" if r["flipped"] is None else r["flipped"],
             note(r).replace("|", "\\|")))
+    return "\n".join(out) + "\n"
+
+
+def main(paths):
+    rows = []
+    for path in paths:
+        with open(path) as f:
+            rows += [json.loads(line) for line in f if line.strip()]
+    sys.stdout.write(table(rows))
 
 
 if __name__ == "__main__":

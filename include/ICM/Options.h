@@ -36,7 +36,7 @@ struct Newton_options
   /// nearly singular (circles that barely interact) and the full step is a poor model: it
   /// can ask for radii to change by e^100. A nearly closed surface needs conformal factors
   /// of e^-40 and reaches them in a few capped steps, where uncapped steps take many more
-  /// or fail; on disks the cap costs nothing (doc/benchmarks.md).
+  /// or fail; on disks the cap costs nothing (doc/benchmarks.md, Nearly closed meshes).
   double max_step = 10.0;
   /// A metric with a limited valid region (vertex scaling, inversive distance) gives up
   /// after this many consecutive steps cut below 1/32 by faces that would stop being
@@ -172,7 +172,7 @@ struct Cone_options
 {
   /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
   /// of its neighbourhood changes by less than exp(2 * this), within e^1.2 ~ 3.3 by default
-  /// (the trade of distortion against cones: doc/benchmarks.md).
+  /// (the trade of distortion against cones: doc/benchmarks.md, Every surface).
   double max_log_scale = 0.6;
   /// At most this many interior cones (a user limit); 0 means none.
   int max_cones = 32;

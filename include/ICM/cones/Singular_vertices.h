@@ -8,7 +8,7 @@
 // - `greedy_cones` (Ben-Chen, Gotsman, Bunin 2008; Springborn, Schroeder, Pinkall 2008) adds
 //   cones where the current entropy optimum's |u - u0| is largest, and re-solves
 //   warm-started (a few far-apart cones per round once there are several). Each cone removes the worst area distortion left, so the area figure falls
-//   fastest with it (measured in doc/benchmarks.md); it is the default.
+//   fastest with it (doc/benchmarks.md, Every surface); it is the default.
 // Both run on the circle packing metric, whose every u is valid: the first optima of a closed
 // surface with two cones need conformal factors of e^30 that no exact metric can reach.
 

@@ -10,7 +10,8 @@
 // The unknowns are numbered in a fill-reducing (AMD) order computed once from the first
 // pattern. A metric that flips its triangulation changes a few entries per Newton step;
 // the order stays good for them, so re-analysing after flips costs only the elimination
-// tree: lion-head spends 36 ms in three AMD analyses (of 89 ms in Newton) otherwise.
+// tree; a fresh AMD analysis after each flipping step was a large share of Newton's time
+// (chosen by measurement; the parameterizers' times are in doc/benchmarks.md, Disks).
 
 #ifndef ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
 #define ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
@@ -34,13 +35,13 @@ namespace ICM {
 using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 /// Eigen's simplicial LDL^T, in the AMD order `Dynamic_laplacian` numbers its unknowns in:
-/// always available, and the fastest choice for small and medium meshes (benchmark/kernels:
-/// 0.40 ms at 3.7k faces, 43 ms at 59k, 0.48 s at 235k, ahead of CHOLMOD's supernodal LL^T)
-/// because mesh Laplacians have small supernodes.
+/// always available, and the fastest choice for small and medium meshes (ahead of CHOLMOD's
+/// supernodal LL^T; benchmark/kernels times both) because mesh Laplacians have small
+/// supernodes.
 ///
 /// The analysis reads the matrix in place: Eigen 3.4 recognises "no ordering" only as
 /// `NaturalOrdering<Eigen::Index>`, which does not compile with int indices, and otherwise
-/// copies the matrix twice per analysis (as long as a factorization on horse).
+/// copies the matrix twice per analysis (together about as long as a factorization).
 class Simplicial_solver
   : public Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Eigen::NaturalOrdering<int>>
 {
@@ -60,9 +61,10 @@ public:
 using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Upper>;
 
 /// CHOLMOD's simplicial LDL^T after a nested dissection ordering (NESDIS). AMD's fill grows
-/// badly on large planar-like graphs: on lion-head refined to 1.07M faces one numeric
-/// factorization takes 15.5 s with AMD and 2.7 s after nested dissection, whose analysis
-/// (2.8 s, done once) only pays off from about 10^5 unknowns (measured, one thread).
+/// badly on large planar-like graphs: on a million faces a numeric factorization after nested
+/// dissection takes a fraction of AMD's, but the dissection's analysis (done once) pays off
+/// only from about 10^5 unknowns (chosen by measurement, one thread: doc/benchmarks.md,
+/// Scaling).
 class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Upper>
 {
 public:
@@ -76,8 +78,8 @@ public:
 
 /// The default when SuiteSparse is present: `Simplicial_solver` below
 /// `nested_dissection_min_unknowns`, `Nested_dissection_solver` from there on (one
-/// analysis and six factorizations, the cost of a parameterization: 0.41 against 0.59 s at
-/// 33k unknowns, 4.5 against 2.8 s at 133k, 94 against 19 s at 533k).
+/// analysis and six factorizations, the cost of a parameterization, were timed for both
+/// solvers across sizes; the switch is near where they cross: doc/benchmarks.md, Scaling).
 class Size_adaptive_solver
 {
 public:
@@ -157,10 +159,10 @@ public:
 
   /// Rebuilds the pattern from the edges of the index (after edge flips) and analyses it
   /// again; the next solve needs a new factorization. Flips can make the fill-reducing order
-  /// stale: on lion-head 125 flips (0.5% of the edges) grow the factor by 17%. When the
-  /// solver reports its fill (`factor_nonzeros()`) and it grew by more than
-  /// `max_fill_growth` since the unknowns were numbered, they are numbered again: AMD costs
-  /// about a third of a factorization there, and a factor 10% larger costs more than that
+  /// stale: a first Newton step's flips of a small fraction of the edges can grow the factor
+  /// by a sixth. When the solver reports its fill (`factor_nonzeros()`) and it grew by more
+  /// than `max_fill_growth` since the unknowns were numbered, they are numbered again: AMD
+  /// costs a fraction of a factorization there, and a factor 10% larger costs more than that
   /// over the remaining Newton steps. Returns whether the unknowns were renumbered.
   bool rebuild_pattern(double max_fill_growth = 0.1)
   {

@@ -191,10 +191,10 @@ Curvature_space_report minimize_energy_by_projected_gradient(
 
   // u = K^{-1}(k), then E and the projected grad_k E there.
   // The inner K^{-1} is solved to a thousandth of the outer tolerance: Theorem 3.2's figure
-  // is a spread of grad_k E, which errors of k move. Measured on nefertiti (circle packing,
-  // u-square, outer tolerance 1e-8): with the inner 1e-10 Algorithm 4 stalls at the residual
-  // 5e-6 (line search without decrease, u 0.08 away from the optimum, E equal to 1e-12); with
-  // 1e-11 it converges in 2398 steps, with 1e-13 in 2777.
+  // is a spread of grad_k E, which errors of k move. On nefertiti (circle packing, u-square)
+  // an inner tolerance only a hundredth of the outer one made Algorithm 4 stall (a line search
+  // without decrease, E equal to the optimum's to round-off, u still away from it); a
+  // thousandth converges (doc/energies.md, Why Algorithm 4 is only the reference).
   Newton_options inner = newton_of(options.newton, Newton_options());
   inner.tolerance = std::min(inner.tolerance, 1e-3 * options.tolerance);
   auto measure = [&](const Eigen::VectorXd& target, Eigen::VectorXd& x, double& value, Eigen::VectorXd& h) {
