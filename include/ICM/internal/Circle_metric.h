@@ -26,8 +26,8 @@ namespace ICM {
 enum class Initial_radius
 {
   /// Their mean. The corner radii of an edge inside one face sum to its length, so the mean
-  /// keeps neighbouring circles close to tangent-or-orthogonal: on the horse 9 034 of 60 333
-  /// angles need clamping to pi/2, against 41 912 with the maximum.
+  /// keeps neighbouring circles close to tangent-or-orthogonal: far fewer angles need
+  /// clamping to pi/2 than with the maximum.
   Mean_corner,
   /// Their maximum, the paper's Algorithm 2. Circles overlap heavily on irregular meshes.
   Max_corner,

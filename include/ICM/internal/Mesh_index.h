@@ -299,8 +299,8 @@ inline Status check_geometry(const Mesh_index& index)
 
 /// The faces of the connected component of `seed`, in the order of CGAL's
 /// `Polygon_mesh_processing::connected_component` (depth first, each face where it is first
-/// taken from the stack). CGAL marks the faces seen in a std::set, a fifth of the time of
-/// indexing lion-head; a face property map does it in linear time.
+/// taken from the stack). CGAL marks the faces seen in a std::set, a large share of the
+/// indexing's time; a face property map does it in linear time.
 template <class TriangleMesh>
 std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>
 faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<TriangleMesh>::face_descriptor seed)

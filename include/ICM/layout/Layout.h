@@ -357,12 +357,11 @@ inline Layout_check check_layout(const internal::Mesh_index& index,
 /// The propagation layout, unfolded from the middle of the chart where that is more exact.
 /// Each vertex the unfolding goes around is flat only to Newton's residual (~1e-14 rad), so
 /// the direction drifts with the number of vertices between an edge and the root, and the
-/// position error with its distance from the root: armadillo with 32 cones spans some 1500
-/// of its shortest edges, whose seam sides differed by 1e-9 unfolded from the face farthest
-/// from the border in face hops, 1e-10 from the face at the middle of the first layout. But
-/// a nearly closed disk squeezes most of its surface into a speck 1e-9 of its size around
-/// that farthest face, which only keeps its digits near the origin (re-rooted, armadillo
-/// minus one vertex star had edges off by 6%): the more exact of the two layouts is kept.
+/// position error with its distance from the root: a long cut disk closes its seams better
+/// unfolded from the middle of its first layout than from the face farthest from the border
+/// in face hops. But a nearly closed disk squeezes most of its surface into a speck around
+/// that farthest face, which only keeps its digits near the origin, where re-rooting would
+/// lose them: the more exact of the two layouts is kept.
 inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
                                              const std::vector<double>& lengths,
                                              const std::vector<Triangle_angles>& angles)

@@ -28,8 +28,8 @@ inline double smallest_area_at(const std::vector<std::array<Uv, 2>>& sides, cons
 /// each affine in p: area_i(p) = g_i . p + c_i for the face's other corners a_i, b_i in
 /// order, over the disc centred at the mean of those corners through the farthest of them.
 /// A closed fan's best points (its kernel) lie inside that disc anyway, but an open one (a
-/// border vertex) grows every face by moving outwards without end: horse, a border vertex
-/// sent 30 of its star's radii out magnified a face 629 times. The maximum of a minimum of
+/// border vertex) grows every face by moving outwards without end, magnifying its faces
+/// hundreds of times. The maximum of a minimum of
 /// affine functions over a disc is where three of them are equal inside it, where two are
 /// equal on its circle, or where one is largest on it, so all of those are tried (a vertex
 /// has a handful of faces). Returns the smallest area at the point found.
@@ -234,13 +234,13 @@ struct Seam_twin
 ///
 /// The metric of an intrinsic triangulation is laid out exactly at the vertices, but a face
 /// of the mesh that is not a face of that triangulation is drawn straight between its
-/// vertices' images, and a very obtuse face (horse: 163 degrees, mannequin-devil: 166) can
+/// vertices' images, and a very obtuse face (above 160 degrees on the shared meshes) can
 /// come out flipped. For each flipped face, the movable corner whose faces can be made most
 /// positive (`max_min_area_point`: the largest smallest doubled area mu) moves. If mu > 0 it
 /// goes from that point to where its star is most conformal (`most_conformal_position`: the
 /// least summed conformal distortion of its faces against their shapes in the mesh,
-/// `index.points`, every face kept positive). Moving only as far as needed to unflip, as at
-/// first, left slivers: mean QC 13.7 (max 8247) on pig under the angle energy. Else it moves
+/// `index.points`, every face kept positive): moving only as far as needed to unflip leaves
+/// slivers of a huge quasi-conformal ratio. Else it moves
 /// to the max-min point and a later pass moves its neighbours. A border vertex may move; the
 /// side of a seam moves only with its `twins` entry (its faces and its twin's, seen in its
 /// frame, are the whole star of a flat vertex), else not at all.

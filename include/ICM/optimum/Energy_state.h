@@ -246,7 +246,7 @@ public:
     if constexpr(develops_faces)
     {
       // Measured when first asked after a development: three arctangents per face are a
-      // sixth of an update on the horse, and only the angle energies read them.
+      // good part of an update, and only the angle energies read them.
       if(!developed_angles_current_)
         measure_developed_angles();
       return developed_angle_[f][c];

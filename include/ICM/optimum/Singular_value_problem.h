@@ -96,8 +96,8 @@ inline void add_free_laplacian_rows(const Mesh_index& t, const std::vector<doubl
 /// [H + mu, Delta_N.^T; Delta_N., -delta] [h; lambda] = [r on S; 0] is factorized once. mu (a
 /// millionth of H's mean diagonal) fixes the global scale H ignores; delta turns the
 /// constraint into a penalty 1e8 times stiffer than H, which keeps the matrix quasi-definite
-/// (an LDL^T without pivoting exists in any order) and its pivots far from round-off (a
-/// penalty 1e12 times stiffer lost the direction on the horse).
+/// (an LDL^T without pivoting exists in any order) and its pivots far from round-off (a much
+/// stiffer penalty loses the direction to round-off).
 class Gauss_newton_preconditioner
 {
 public:
@@ -337,8 +337,8 @@ private:
   Curvature_space_report& report_;
   const Eigen::VectorXd target_;
   static constexpr int max_chord_steps = 6;
-  // Measured on the horse's energies (doc/energies.md): 1e-6 factorized 158 times for
-  // log area, 1e-3 86 times, in as many steps.
+  // Above this a chord step refactorizes: lower, the energies' runs factorize about twice as
+  // often for as many steps (doc/energies.md).
   static constexpr double fresh_factorization_above = 1e-3; // max |k_N|, radians
   Energy_gradient partials_;
   Gauss_newton_preconditioner gauss_newton_;
