@@ -243,83 +243,65 @@ TEST(IntrinsicDelaunayMetric, PtolemyFlipOfACyclicDiamondGivesTheOtherDiagonal)
   }
 }
 
-/// Unflips `uv` with vertex 0 alone movable; returns how many moves were made.
-int unflip_moving_vertex_0(const Mesh_index& index, std::vector<ICM::Uv>& uv)
-{
-  std::vector<char> movable(index.number_of_vertices(), 0);
-  movable[0] = 1;
-  return ICM::unflip_by_moving_vertices(index, uv, movable);
-}
-
-TEST(Unflip, MovesAVertexBackIntoItsRing)
-{
-  // A hexagon fan whose centre was placed outside the ring: its faces flip; moving the
-  // centre alone repairs them.
-  Mesh_index index;
-  index.points.push_back({0, 0, 0});
-  std::vector<ICM::Uv> uv = {{1.5, 0.2}};
-  for(int i = 0; i < 6; ++i)
-  {
-    index.points.push_back({std::cos(i * M_PI / 3), std::sin(i * M_PI / 3), 0});
-    uv.push_back({index.points.back()[0], index.points.back()[1]});
-  }
-  for(int i = 0; i < 6; ++i)
-    index.faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
-  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
-  ASSERT_GT(ICM::count_flipped_faces(index, uv), 0);
-  const std::vector<ICM::Uv> ring(uv.begin() + 1, uv.end());
-  EXPECT_GE(unflip_moving_vertex_0(index, uv), 1);
-  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
-  EXPECT_TRUE(std::equal(ring.begin(), ring.end(), uv.begin() + 1)); // only the centre moved
-  // To where the star is most conformal: the ring is the mesh's own, so the centre.
-  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
-  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
-}
-
-TEST(Unflip, KeepsTheStarAwayFromSlivers)
-{
-  // An obtuse face (0, 1, 2) whose far corner 0 was drawn just across its long edge, as a
-  // mesh face the intrinsic triangulation does not have comes out of a layout. The star of
-  // 0 is a square fan; its most conformal position is far from the long edge, and the
-  // repaired faces are not slivers.
-  Mesh_index index;
-  index.points = {{0, 0.2, 0}, {-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
-  std::vector<ICM::Uv> uv = {{0, -0.01}, {-1, 0}, {1, 0}, {1, 1}, {-1, 1}};
-  index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
-  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
-  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 1);
-  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
-  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
-  // The 3D star is the UV ring itself, so its most conformal position is (0, 0.2), where
-  // vertex 0 is in 3D and every face is similar to its shape (the first unflipping stopped
-  // at twice the distance needed to unflip: y = 0.01, a sliver).
-  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
-  EXPECT_NEAR(uv[0][1], 0.2, 1e-12);
-}
-
-TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
-{
-  // A border vertex 0 with an open fan of four faces, drawn above its ring: three faces
-  // flip. Moving it down grows every face without end, so the largest smallest area is
-  // sought only over the disc around its neighbours; from there it goes to its most
-  // conformal position, where it is in 3D (the ring is the mesh's own). Sought over the
-  // whole plane, with a move towards the most conformal point that kept half that area, the
-  // point sent it to (-1.9, -2.9), 2.5 ring radii below the border, and magnified a face
-  // 3.9 times (horse: 30 star radii, 629 times).
-  Mesh_index index;
-  index.points = {{0, 0, 0}, {0.65, 0, 0}, {1.05, 0.84, 0}, {0.18, 1.2, 0}, {-0.5, 0.4, 0}, {-0.95, 0, 0}};
-  std::vector<ICM::Uv> uv = {{0.5, 1.7}};
-  for(int i = 1; i < 6; ++i)
-    uv.push_back({index.points[i][0], index.points[i][1]});
-  for(int i = 0; i < 4; ++i)
-    index.faces.push_back({0, 1 + i, 2 + i});
-  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
-  ASSERT_TRUE(index.is_boundary_vertex[0]);
-  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 3);
-  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
-  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
-  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
-  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
-}
 
 } // namespace
+
+TEST(CirclePackingMetric, EquilateralGridIsReproducedExactly)
+{
+  const ICM::internal::Mesh_index grid = icm_test::equilateral_grid(6);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(grid);
+  EXPECT_EQ(metric.clamped_edges, 0);
+  ICM::Curvature_map<> curvature(grid, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
+  for(int e = 0; e < grid.number_of_edges(); ++e)
+  {
+    EXPECT_NEAR(metric.inversive_distance[e], 1.0, 1e-12); // tangent circles
+    EXPECT_NEAR(lengths[e], 1.0, 1e-12);
+  }
+}
+
+TEST(CirclePackingMetric, FaceGeometryKeepsItsPrecisionAcrossScales)
+{
+  // Three tangent circles of radii 1, 1, t: the excess s - l_c of corner c is its radius,
+  // so tan(theta_c / 2) = sqrt(r_a r_b / (s r_c)), and every power-centre distance is the
+  // inradius sqrt(r1 r2 r3 / s). With t = 1e-20 the sides are 2, 1 + t, 1 + t = 1 in double:
+  // formulas from the lengths give theta_1 = 0, Newton then sees no coupling at all.
+  ICM::Circle_packing_metric metric;
+  metric.set_intersection_angles({0.0, 0.0, 0.0});
+  for(double t : {1e-3, 1e-12, 1e-20})
+  {
+    const std::array<double, 3> g = {1.0, 1.0, t};
+    const std::array<double, 3> l = {metric.length(0, g[1], g[2]), metric.length(1, g[0], g[2]),
+                                     metric.length(2, g[0], g[1])};
+    const ICM::Face_geometry face = metric.face_geometry({0, 1, 2}, g, l);
+    const double s = 2.0 + t;
+    const double big_angle = 2.0 * std::atan(std::sqrt(t / s));
+    EXPECT_NEAR(face.angles.angle[0] / big_angle, 1.0, 1e-14) << t;
+    EXPECT_NEAR(face.angles.angle[1] / big_angle, 1.0, 1e-14) << t;
+    EXPECT_NEAR(face.angles.angle[2], M_PI - 2.0 * big_angle, 1e-15) << t;
+    const double inradius = std::sqrt(t / s);
+    EXPECT_NEAR(face.weight[2] / (inradius / 2.0), 1.0, 1e-13) << t;       // edge 01
+    EXPECT_NEAR(face.weight[0] / (inradius / (1.0 + t)), 1.0, 1e-13) << t; // edge 12
+    EXPECT_NEAR(face.weight[1] / (inradius / (1.0 + t)), 1.0, 1e-13) << t; // edge 02
+  }
+}
+
+TEST(CirclePackingMetric, AnglesStayInTheRangeThatKeepsTrianglesValid)
+{
+  const ICM::internal::Mesh_index index = icm_test::index_file("three_peaks.off");
+  for(ICM::Initial_radius rule : {ICM::Initial_radius::Mean_corner, ICM::Initial_radius::Max_corner})
+  {
+    const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index, rule);
+    for(double c : metric.inversive_distance)
+    {
+      EXPECT_GE(c, 0.0);
+      EXPECT_LE(c, 1.0);
+    }
+    // Thurston: with phi in [0, pi/2] any radii give triangles; try wild ones.
+    ICM::Curvature_map<> curvature(index, metric);
+    Eigen::VectorXd k;
+    curvature.evaluate(icm_test::random_perturbation(metric.u0, 3.0, 7), k);
+    EXPECT_TRUE(k.allFinite());
+  }
+}
+

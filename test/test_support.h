@@ -83,6 +83,55 @@ inline ICM::internal::Mesh_index index_of(const std::string& path)
   return index;
 }
 
+/// A planar grid of equilateral triangles: every circle packing with tangent circles of
+/// radius l/2 reproduces it exactly.
+/// The mesh of a bundled data file, indexed.
+inline ICM::internal::Mesh_index index_file(const std::string& name) { return index_of(data_path(name)); }
+
+inline ICM::internal::Mesh_index equilateral_grid(int n)
+{
+  ICM::internal::Mesh_index index;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i)
+      index.points.push_back({i + 0.5 * j, j * std::sqrt(3.0) / 2, 0.0});
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i)
+    {
+      index.faces.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+      index.faces.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  EXPECT_TRUE(ICM::internal::build_connectivity(index).ok());
+  return index;
+}
+
+/// A strip of 2 m equilateral triangles in a row, one unit wide: every hop of the layout's
+/// face tree doubles its error estimate, which overflows after some 1000 hops.
+inline ICM::internal::Mesh_index equilateral_strip(int m)
+{
+  ICM::internal::Mesh_index index;
+  for(int i = 0; i <= m; ++i)
+  {
+    index.points.push_back({double(i), 0.0, 0.0});
+    index.points.push_back({i + 0.5, std::sqrt(3.0) / 2, 0.0});
+  }
+  for(int i = 0; i < m; ++i)
+  {
+    index.faces.push_back({2 * i, 2 * i + 2, 2 * i + 1});
+    index.faces.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
+  }
+  EXPECT_TRUE(ICM::internal::build_connectivity(index).ok());
+  return index;
+}
+
+inline std::vector<char> interior_of(const ICM::internal::Mesh_index& index)
+{
+  std::vector<char> interior(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    interior[v] = !index.is_boundary_vertex[v];
+  return interior;
+}
+
 /// `u0` plus uniform noise in [-amplitude, amplitude], reproducible from `seed`.
 inline Eigen::VectorXd random_perturbation(const Eigen::VectorXd& u0, double amplitude, unsigned seed)
 {

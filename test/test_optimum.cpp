@@ -580,3 +580,125 @@ TEST(EnergyParameterizer, DefaultEnergyKeepsTheFreeBoundaryOptimum)
   EXPECT_EQ(by_default.report().energy_iterations, 0);
   static_assert(!decltype(by_default)::optimizes_energy, "the default is the Dirichlet shortcut");
 }
+
+TEST(OptimalMetric, DiffusionAndNewtonReachTheSameOptimum)
+{
+  const ICM::internal::Mesh_index index = icm_test::index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  const std::vector<char> singular = ICM::boundary_singular_set(index);
+
+  Eigen::VectorXd u_newton;
+  const ICM::Newton_report newton = ICM::free_boundary_optimum(index, metric, singular, u_newton);
+  ASSERT_TRUE(newton.converged) << newton.message;
+  EXPECT_LE(newton.iterations, 10);
+
+  Eigen::VectorXd u_diffusion;
+  ICM::Diffusion_options options;
+  options.tolerance = 1e-10;
+  const ICM::Diffusion_report diffusion =
+    ICM::free_boundary_curvature_diffusion(index, metric, singular, u_diffusion, options);
+  ASSERT_TRUE(diffusion.converged) << diffusion.message;
+  EXPECT_GT(diffusion.iterations, newton.iterations); // the point of the Newton form
+
+  // Lemma 3.4 / Theorem 3.2: u - u0 is one constant on the singular set...
+  const Eigen::VectorXd shift = u_diffusion - metric.u0;
+  double lo = 1e300, hi = -1e300;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    if(singular[v])
+    {
+      lo = std::min(lo, shift[v]);
+      hi = std::max(hi, shift[v]);
+    }
+  EXPECT_LT(hi - lo, 1e-12);
+  // ...and the two metrics agree up to that global scale.
+  const Eigen::VectorXd difference = u_diffusion - u_newton;
+  EXPECT_LT((difference.array() - lo).abs().maxCoeff(), 1e-7);
+}
+
+#ifdef ICM_HAS_CHOLMOD
+TEST(OptimalMetric, CholmodAndSimplicialSolversAgree)
+{
+  const ICM::internal::Mesh_index index = icm_test::index_file("three_peaks.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  const std::vector<char> singular = ICM::boundary_singular_set(index);
+  Eigen::VectorXd u_simplicial, u_cholmod, u_nested;
+  const ICM::Newton_report a =
+    ICM::free_boundary_optimum<ICM::Simplicial_solver>(index, metric, singular, u_simplicial);
+  const ICM::Newton_report b =
+    ICM::free_boundary_optimum<ICM::Cholmod_solver>(index, metric, singular, u_cholmod);
+  const ICM::Newton_report c =
+    ICM::free_boundary_optimum<ICM::Nested_dissection_solver>(index, metric, singular, u_nested);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_TRUE(b.converged) << b.message;
+  ASSERT_TRUE(c.converged) << c.message;
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.iterations, c.iterations);
+  EXPECT_LT((u_simplicial - u_cholmod).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((u_simplicial - u_nested).cwiseAbs().maxCoeff(), 1e-9);
+
+  // The default picks by size: three_peaks is far below the nested dissection threshold.
+  ICM::Dynamic_laplacian<ICM::Size_adaptive_solver> small(index, icm_test::interior_of(index));
+  EXPECT_LT(small.size(), ICM::Size_adaptive_solver::nested_dissection_min_unknowns);
+  ICM::Size_adaptive_solver solver;
+  solver.analyzePattern(small.matrix());
+  EXPECT_FALSE(solver.uses_nested_dissection());
+}
+#endif
+
+TEST(OptimalMetric, DegreeThreeVertexCanBeFlattened)
+{
+  // A fan whose centre has degree 3 inside a larger disk: with link angles clamped to pi/2
+  // its angle sum could never reach 2 pi; the metric relaxes that link.
+  ICM::internal::Mesh_index index;
+  index.points = {{0.2, 0.1, 0}, {2, 0, 0}, {-1, 1.7, 0}, {-1, -1.7, 0},
+                  {3, 2, 0}, {-3, 0.5, 0}, {1, -3, 0}};
+  index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 4, 2}, {2, 5, 3}, {3, 6, 1}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  std::vector<double> phi(index.number_of_edges(), M_PI / 2);
+  EXPECT_GE(ICM::keep_short_cycles_flattenable(index, phi), 1);
+  double link = 0;
+  for(int f = 0; f < 3; ++f)
+    link += phi[index.face_edges[f][0]];
+  EXPECT_NEAR(link, M_PI - 0.1 * M_PI, 1e-12);
+  metric.set_intersection_angles(phi);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  EXPECT_TRUE(report.converged) << report.message;
+}
+
+TEST(OptimalMetric, FourCycleAroundSeveralVerticesIsRelaxed)
+{
+  // Nested squares: border c0..c3, inner square d0..d3 (degree 5 each), centre m. With every
+  // angle orthogonal the border 4-cycle gives sum (pi - phi) = 2 pi exactly: the five inner
+  // vertices reach flatness only as their radii tend to 0. No vertex link sees this cycle.
+  ICM::internal::Mesh_index index;
+  index.points = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0},
+                  {0, -1, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 0}};
+  for(int i = 0; i < 4; ++i)
+  {
+    const int c = i, c_next = (i + 1) % 4, d = 4 + i, d_next = 4 + (i + 1) % 4;
+    index.faces.push_back({c, c_next, d});
+    index.faces.push_back({d, c_next, d_next});
+    index.faces.push_back({d, d_next, 8});
+  }
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_TRUE(index.is_disk());
+  std::vector<double> phi(index.number_of_edges(), M_PI / 2);
+  // Relaxed: the link of m and the border square.
+  EXPECT_EQ(ICM::keep_short_cycles_flattenable(index, phi), 2);
+  double border = 0;
+  for(int e : index.boundary_loop_edges.front())
+    border += phi[e];
+  EXPECT_NEAR(border, 2 * M_PI - 0.1 * M_PI, 1e-12);
+
+  ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  metric.set_intersection_angles(phi);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  EXPECT_TRUE(report.converged) << report.message;
+  EXPECT_LE(report.iterations, 10);
+}
+

@@ -1,5 +1,6 @@
-// Global overlaps of a layout (Border_overlaps.h) and the packing of several charts into one
-// UV map (Chart_packing.h).
+// The layout stage (layout/): the propagation and harmonic layouts, the unflipping, the global
+// overlaps of a layout (Border_overlaps.h) and the packing of several charts into one UV map
+// (Chart_packing.h).
 //
 // Every mesh is built by hand so that the expected answer is known: a disk laid out as itself,
 // a strip bent along a spiral (past one turn it lies over itself although no face is flipped),
@@ -8,8 +9,15 @@
 
 #include "test_support.h"
 
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/layout/Border_overlaps.h>
 #include <ICM/layout/Chart_packing.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/layout/Unflip.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
 
 #include <algorithm>
 #include <array>
@@ -682,3 +690,170 @@ TEST(ChartPacking, PackedChartsHaveNoBorderOverlap)
     shifted[v][0] += 3.0;
   EXPECT_GT(ICM::count_border_overlaps(index, shifted).crossing_pairs, 0);
 }
+
+TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
+{
+  const ICM::internal::Mesh_index index = icm_test::index_file("three_peaks.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Inverse_curvature_map<> solver(index, metric, icm_test::interior_of(index));
+  Eigen::VectorXd u;
+  ASSERT_TRUE(ICM::free_boundary_optimum(solver, metric, u).converged);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  solver.curvature_map().evaluate(u, k, &w);
+  const std::vector<double> lengths = solver.curvature_map().lengths();
+
+  const std::vector<ICM::Uv> propagated =
+    ICM::layout_by_propagation(index, lengths, solver.curvature_map().face_angles());
+  const ICM::Layout_check a = ICM::check_layout(index, lengths, propagated);
+  EXPECT_EQ(a.flipped_faces, 0);
+  EXPECT_LT(a.max_relative_length_error, 1e-8);
+
+  std::vector<ICM::Uv> harmonic;
+  std::string message;
+  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, solver.laplacian(), harmonic, message))
+    << message;
+  const ICM::Layout_check b = ICM::check_layout(index, lengths, harmonic);
+  EXPECT_EQ(b.flipped_faces, 0);
+  EXPECT_LT(b.max_relative_length_error, 1e-8);
+
+  // That layout refined Newton's last factorization; a fresh factorization of the final
+  // Laplacian gives the same coordinates.
+  ASSERT_TRUE(solver.laplacian().has_factorization());
+  ICM::Dynamic_laplacian<> fresh(index, icm_test::interior_of(index));
+  ASSERT_FALSE(fresh.has_factorization());
+  std::vector<ICM::Uv> direct;
+  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, fresh, direct, message)) << message;
+  ASSERT_TRUE(fresh.has_factorization());
+  double largest_difference = 0, extent = 0;
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    for(int c = 0; c < 2; ++c)
+    {
+      largest_difference = std::max(largest_difference, std::abs(direct[v][c] - harmonic[v][c]));
+      extent = std::max(extent, std::abs(direct[v][c]));
+    }
+  EXPECT_LT(largest_difference, 1e-12 * extent);
+}
+
+TEST(Layout, EquilateralGridLaysOutAsItself)
+{
+  // A planar mesh reproduced exactly by its packing is already flat: the optimum is u0
+  // and the layout is the input up to a rigid motion.
+  const ICM::internal::Mesh_index grid = icm_test::equilateral_grid(5);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(grid);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report =
+    ICM::free_boundary_optimum(grid, metric, ICM::boundary_singular_set(grid), u);
+  ASSERT_TRUE(report.converged);
+  EXPECT_EQ(report.iterations, 0);
+  ICM::Curvature_map<> curvature(grid, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(u);
+  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(grid, lengths, curvature.face_angles());
+  for(int i = 0; i < grid.number_of_vertices(); ++i)
+    for(int j = i + 1; j < grid.number_of_vertices(); j += 5)
+    {
+      const auto& p = grid.points[i];
+      const auto& q = grid.points[j];
+      EXPECT_NEAR(std::hypot(uv[i][0] - uv[j][0], uv[i][1] - uv[j][1]),
+                  std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
+    }
+}
+
+TEST(Layout, LongStripLaysOutAsItselfInLinearTime)
+{
+  // 6000 faces in a row: 3000 hops from the central root to either end, where the error
+  // estimate has overflowed to infinity long before. The layout is still every face once
+  // (a strip of 1 x 550 squares used to offer its faces again without end) and isometric.
+  const ICM::internal::Mesh_index strip = icm_test::equilateral_strip(3000);
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(strip);
+  ICM::Curvature_map<> curvature(strip, metric);
+  const std::vector<double>& lengths = curvature.compute_lengths(metric.u0);
+  const std::vector<ICM::Uv> uv = ICM::layout_by_propagation(strip, lengths, curvature.face_angles());
+  const ICM::Layout_check check = ICM::check_layout(strip, lengths, uv);
+  EXPECT_EQ(check.flipped_faces, 0);
+  EXPECT_LT(check.max_relative_length_error, 1e-9);
+  const int last = strip.number_of_vertices() - 1;
+  EXPECT_NEAR(std::hypot(uv[last][0] - uv[0][0], uv[last][1] - uv[0][1]),
+              std::hypot(strip.points[last][0] - strip.points[0][0], strip.points[last][1] - strip.points[0][1]),
+              1e-9 * strip.points[last][0]);
+}
+
+/// Unflips `uv` with vertex 0 alone movable; returns how many moves were made.
+int unflip_moving_vertex_0(const ICM::internal::Mesh_index& index, std::vector<ICM::Uv>& uv)
+{
+  std::vector<char> movable(index.number_of_vertices(), 0);
+  movable[0] = 1;
+  return ICM::unflip_by_moving_vertices(index, uv, movable);
+}
+
+TEST(Unflip, MovesAVertexBackIntoItsRing)
+{
+  // A hexagon fan whose centre was placed outside the ring: its faces flip; moving the
+  // centre alone repairs them.
+  ICM::internal::Mesh_index index;
+  index.points.push_back({0, 0, 0});
+  std::vector<ICM::Uv> uv = {{1.5, 0.2}};
+  for(int i = 0; i < 6; ++i)
+  {
+    index.points.push_back({std::cos(i * M_PI / 3), std::sin(i * M_PI / 3), 0});
+    uv.push_back({index.points.back()[0], index.points.back()[1]});
+  }
+  for(int i = 0; i < 6; ++i)
+    index.faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_GT(ICM::count_flipped_faces(index, uv), 0);
+  const std::vector<ICM::Uv> ring(uv.begin() + 1, uv.end());
+  EXPECT_GE(unflip_moving_vertex_0(index, uv), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  EXPECT_TRUE(std::equal(ring.begin(), ring.end(), uv.begin() + 1)); // only the centre moved
+  // To where the star is most conformal: the ring is the mesh's own, so the centre.
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
+}
+
+TEST(Unflip, KeepsTheStarAwayFromSlivers)
+{
+  // An obtuse face (0, 1, 2) whose far corner 0 was drawn just across its long edge, as a
+  // mesh face the intrinsic triangulation does not have comes out of a layout. The star of
+  // 0 is a square fan; its most conformal position is far from the long edge, and the
+  // repaired faces are not slivers.
+  ICM::internal::Mesh_index index;
+  index.points = {{0, 0.2, 0}, {-1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}};
+  std::vector<ICM::Uv> uv = {{0, -0.01}, {-1, 0}, {1, 0}, {1, 1}, {-1, 1}};
+  index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 1);
+  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  // The 3D star is the UV ring itself, so its most conformal position is (0, 0.2), where
+  // vertex 0 is in 3D and every face is similar to its shape (the first unflipping stopped
+  // at twice the distance needed to unflip: y = 0.01, a sliver).
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.2, 1e-12);
+}
+
+TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
+{
+  // A border vertex 0 with an open fan of four faces, drawn above its ring: three faces
+  // flip. Moving it down grows every face without end, so the largest smallest area is
+  // sought only over the disc around its neighbours; from there it goes to its most
+  // conformal position, where it is in 3D (the ring is the mesh's own). Sought over the
+  // whole plane, with a move towards the most conformal point that kept half that area, the
+  // point sent it to (-1.9, -2.9), 2.5 ring radii below the border, and magnified a face
+  // 3.9 times (horse: 30 star radii, 629 times).
+  ICM::internal::Mesh_index index;
+  index.points = {{0, 0, 0}, {0.65, 0, 0}, {1.05, 0.84, 0}, {0.18, 1.2, 0}, {-0.5, 0.4, 0}, {-0.95, 0, 0}};
+  std::vector<ICM::Uv> uv = {{0.5, 1.7}};
+  for(int i = 1; i < 6; ++i)
+    uv.push_back({index.points[i][0], index.points[i][1]});
+  for(int i = 0; i < 4; ++i)
+    index.faces.push_back({0, 1 + i, 2 + i});
+  ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
+  ASSERT_TRUE(index.is_boundary_vertex[0]);
+  ASSERT_EQ(ICM::count_flipped_faces(index, uv), 3);
+  EXPECT_EQ(unflip_moving_vertex_0(index, uv), 1);
+  EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
+  EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
+  EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
+}
+

@@ -1,0 +1,174 @@
+// The curvature stage (curvature/) on flat arrays: the mesh index it reads, the curvature map
+// and its Jacobian (the dynamic Laplacian), Newton on it (Algorithm 1).
+
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Layout.h>
+#include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Optimal_metric.h>
+#include <ICM/internal/Mesh_index.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using ICM::internal::Mesh_index;
+
+Mesh_index index_file(const std::string& name) { return icm_test::index_of(icm_test::data_path(name)); }
+
+using icm_test::random_perturbation;
+using icm_test::equilateral_grid;
+using icm_test::interior_of;
+
+} // namespace
+
+TEST(MeshIndex, TopologyOfRealMeshes)
+{
+  const Mesh_index disk = index_file("nefertiti.off");
+  EXPECT_EQ(disk.number_of_vertices(), 299);
+  EXPECT_EQ(disk.number_of_faces(), 562);
+  EXPECT_EQ(disk.number_of_boundary_loops(), 1);
+  EXPECT_EQ(disk.euler_characteristic(), 1);
+  EXPECT_TRUE(disk.is_disk());
+  // Every edge appears in the face_edges of its faces, border edges in one face only.
+  int border_edges = 0;
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+    border_edges += disk.edge_faces[e][1] < 0;
+  EXPECT_EQ(border_edges, static_cast<int>(disk.boundary_loops[0].size()));
+
+  const Mesh_index sphere = index_file("sphere966.off");
+  EXPECT_EQ(sphere.number_of_boundary_loops(), 0);
+  EXPECT_EQ(sphere.euler_characteristic(), 2);
+  EXPECT_EQ(sphere.genus(), 0);
+  EXPECT_FALSE(sphere.is_disk());
+}
+
+TEST(MeshIndex, NonManifoldVertexIsRefused)
+{
+  Mesh_index bowtie;
+  bowtie.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  bowtie.faces = {{0, 1, 2}, {0, 3, 4}}; // two triangles sharing only vertex 0
+  const ICM::Status status = ICM::internal::build_connectivity(bowtie);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message.find("non-manifold vertex"), std::string::npos) << status.message;
+}
+
+TEST(CurvatureMap, GaussBonnetHoldsForAnyMetric)
+{
+  for(const char* name : {"nefertiti.off", "sphere966.off", "mushroom.off"})
+  {
+    const Mesh_index index = index_file(name);
+    const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+    ICM::Curvature_map<> curvature(index, metric);
+    Eigen::VectorXd k;
+    for(unsigned seed : {1u, 2u, 3u})
+    {
+      curvature.evaluate(random_perturbation(metric.u0, 1.0, seed), k);
+      EXPECT_NEAR(ICM::gauss_bonnet_defect(index, k), 0.0, 1e-9) << name;
+    }
+  }
+}
+
+TEST(CurvatureMap, LaplacianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  const Eigen::VectorXd u = random_perturbation(metric.u0, 0.3, 11);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(u, k, &w);
+  for(double weight : w)
+    EXPECT_GT(weight, -1e-12); // Thurston: phi <= pi/2 keeps the power centre inside
+
+  // The full Delta (nothing pinned) as a dense matrix.
+  const Eigen::MatrixXd delta = icm_test::dense_laplacian(index, w);
+  EXPECT_LT((delta - delta.transpose()).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT(delta.rowwise().sum().cwiseAbs().maxCoeff(), 1e-12);
+
+  // dk = Delta du: central differences of K, column by column on a sample of vertices.
+  EXPECT_LT(icm_test::jacobian_finite_difference_error(curvature, u, delta, 7), 1e-6);
+}
+
+TEST(DynamicLaplacian, RestrictedMatrixMatchesTheWeights)
+{
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  Eigen::VectorXd k;
+  std::vector<double> w;
+  curvature.evaluate(metric.u0, k, &w);
+  ICM::Dynamic_laplacian<ICM::Simplicial_solver> laplacian(index, interior_of(index));
+  laplacian.assemble(w);
+  ASSERT_TRUE(laplacian.factorize()); // positive definite: the border is fixed
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(laplacian.matrix()).selfadjointView<Eigen::Upper>();
+  for(int e = 0; e < index.number_of_edges(); ++e)
+  {
+    const int i = laplacian.free_index(index.edges[e][0]), j = laplacian.free_index(index.edges[e][1]);
+    if(i >= 0 && j >= 0)
+    {
+      EXPECT_DOUBLE_EQ(dense(i, j), -w[e]);
+    }
+  }
+  // Interior rows see their border neighbours only on the diagonal: rows sum to >= 0.
+  EXPECT_GT(dense.rowwise().sum().minCoeff(), -1e-12);
+}
+
+TEST(InverseCurvatureMap, RecoversAMetricFromItsCurvature)
+{
+  // Algorithm 1 on a closed surface: K^{-1}(K(u*)) = u* up to the constant of the kernel.
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  ICM::Curvature_map<> curvature(index, metric);
+  const Eigen::VectorXd u_star = random_perturbation(metric.u0, 0.5, 5);
+  Eigen::VectorXd k_star;
+  curvature.evaluate(u_star, k_star);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(index, metric, k_star, u);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_LE(report.iterations, 10);
+  const Eigen::VectorXd difference = u - u_star;
+  EXPECT_LT((difference.array() - difference.mean()).abs().maxCoeff(), 1e-8);
+  EXPECT_NEAR((u - metric.u0).sum(), 0.0, 1e-8); // normalised as the paper's sum u = 0
+}
+
+TEST(InverseCurvatureMap, NewtonConvergesQuadratically)
+{
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  // Uniform curvature 4 pi / n: the "round" metric of Algorithm 3's first step.
+  const Eigen::VectorXd k_target =
+    Eigen::VectorXd::Constant(index.number_of_vertices(), 4 * M_PI / index.number_of_vertices());
+  Eigen::VectorXd u;
+  ICM::Newton_options options;
+  options.tolerance = 1e-13;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(index, metric, k_target, u, options);
+  ASSERT_TRUE(report.converged) << report.message;
+  const std::vector<double>& r = report.residual_history;
+  ASSERT_GE(r.size(), 3u);
+  icm_test::expect_quadratic_convergence(r);
+}
+
+TEST(InverseCurvatureMap, RefusesCurvatureThatViolatesGaussBonnet)
+{
+  const Mesh_index index = index_file("sphere966.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  Eigen::VectorXd u;
+  const ICM::Newton_report report = ICM::inverse_curvature_map(
+    index, metric, Eigen::VectorXd::Zero(index.number_of_vertices()), u);
+  EXPECT_FALSE(report.converged);
+  EXPECT_NE(report.message.find("Gauss-Bonnet"), std::string::npos) << report.message;
+}
+
