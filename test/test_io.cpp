@@ -569,7 +569,20 @@ TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
   ICM::IO::Uv_mesh nan_uv = grid_uv_mesh();
   nan_uv.uvs[2][0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(ICM::IO::write_uv_obj(path, nan_uv, error));
-  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+  EXPECT_NE(error.find("cannot write '" + path + "': UV 2 is not finite"), std::string::npos) << error;
+  EXPECT_EQ(error.find("extent"), std::string::npos) << error;
+
+  // A layout scaled back to a mesh near the largest double overflows: the message says so.
+  ICM::IO::Uv_mesh huge = grid_uv_mesh();
+  for(auto& p : huge.positions)
+    for(double& x : p)
+      x *= 1.5e308 / 2;
+  huge.uvs[2][1] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(ICM::IO::write_uv_obj(path, huge, error));
+  EXPECT_NE(error.find("UV 2 is not finite: the layout, scaled back to the mesh's extent (1.5e+308), is beyond the "
+                       "range of a double (scale the mesh down)"),
+            std::string::npos)
+      << error;
 
   EXPECT_EQ(read_text(path), "original\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
