@@ -58,6 +58,16 @@ constexpr double log_area_ratio_clamp = 50.;
 
 namespace internal {
 
+/// A value formatted for a label or a message: up to 3 significant digits.
+inline std::string format_label(double x)
+{
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
 /// Why a UV that is not finite overflowed, when it is infinite rather than NaN: parameterizers
 /// lay a mesh out at unit size and scale the UVs back to the mesh's (each chart's UV area is
 /// its 3D area), and near the largest double the layout can outgrow it. Empty for a NaN.
@@ -74,11 +84,7 @@ inline std::string why_uvs_overflow(const IO::Uv_mesh& m, const std::array<doubl
     }
     extent = (std::max)(extent, high - low);
   }
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(3);
-  s << extent;
-  return ": the layout, scaled back to the mesh's extent (" + s.str() +
+  return ": the layout, scaled back to the mesh's extent (" + format_label(extent) +
          "), is beyond the range of a double (scale the mesh down)";
 }
 

@@ -14,9 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <locale>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,16 +79,6 @@ inline void put_coordinate(std::ostream& os, double x)
     if(frac % 10 != 0)
       os << static_cast<char>('0' + frac % 10);
   }
-}
-
-/// A value formatted for a label: up to 3 significant digits.
-inline std::string format_label(double x)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(3);
-  s << x;
-  return s.str();
 }
 
 /// Diverging blue - white - red colour map (the stops of ColorBrewer's RdBu) on t in [-1, 1].
