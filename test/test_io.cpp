@@ -22,6 +22,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -32,6 +33,12 @@
 #include <unordered_map>
 #include <utility>
 #include <vector>
+
+#ifndef _WIN32
+#  include <csignal>
+#  include <sys/wait.h>
+#  include <unistd.h>
+#endif
 
 namespace {
 
@@ -562,7 +569,20 @@ TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
   ICM::IO::Uv_mesh nan_uv = grid_uv_mesh();
   nan_uv.uvs[2][0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(ICM::IO::write_uv_obj(path, nan_uv, error));
-  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+  EXPECT_NE(error.find("cannot write '" + path + "': UV 2 is not finite"), std::string::npos) << error;
+  EXPECT_EQ(error.find("extent"), std::string::npos) << error;
+
+  // A layout scaled back to a mesh near the largest double overflows: the message says so.
+  ICM::IO::Uv_mesh huge = grid_uv_mesh();
+  for(auto& p : huge.positions)
+    for(double& x : p)
+      x *= 1.5e308 / 2;
+  huge.uvs[2][1] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(ICM::IO::write_uv_obj(path, huge, error));
+  EXPECT_NE(error.find("UV 2 is not finite: the layout, scaled back to the mesh's extent (1.5e+308), is beyond the "
+                       "range of a double (scale the mesh down)"),
+            std::string::npos)
+      << error;
 
   EXPECT_EQ(read_text(path), "original\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -645,6 +665,74 @@ TEST(IoAtomicFile, TargetIsADirectory)
   EXPECT_TRUE(fs::is_directory(dir.path() / "sub"));
   EXPECT_EQ(dir.number_of_entries(), 1u);
 }
+
+#ifndef _WIN32
+/// Runs `child` in a forked process, which ends with exit code 0 if `child` returns, and
+/// returns its wait status.
+int wait_status_of_child(const std::function<void()>& child)
+{
+  const pid_t pid = ::fork();
+  if(pid == 0) {
+    child();
+    ::_exit(0);
+  }
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, 0), pid);
+  return status;
+}
+
+/// Writes `obj` and `svg` atomically, with signal `sig` raised in the middle of the second
+/// content: both temporaries exist then. Exits 0 if the writing succeeded, 1 if it failed.
+void write_interrupted_by(int sig, const std::string& obj, const std::string& svg)
+{
+  std::string error;
+  const bool written = ICM::internal::write_files_atomically(
+      {{obj, [](std::ostream& os) { return static_cast<bool>(os << "v 0 0 0\n"); }},
+       {svg, [sig](std::ostream& os) {
+          os << "<svg>" << std::flush;
+          ::raise(sig);
+          return static_cast<bool>(os << "</svg>\n");
+        }}},
+      error);
+  ::_exit(written ? 0 : 1);
+}
+
+void exit_42(int) { ::_exit(42); }
+
+TEST(IoAtomicFile, SignalWhileWritingLeavesNoTemporaryAndKillsBySignal)
+{
+  for(int sig : {SIGTERM, SIGINT}) {
+    Temp_dir dir("icm_test_io");
+    const std::string obj = dir.file("out.obj"), svg = dir.file("out.svg");
+    write_text(obj, "previous\n");
+    const int status = wait_status_of_child([&] { write_interrupted_by(sig, obj, svg); });
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "signal " << sig << ", wait status " << status;
+    EXPECT_EQ(read_text(obj), "previous\n");
+    EXPECT_EQ(dir.number_of_entries(), 1u) << "signal " << sig; // out.obj only: no temporary
+  }
+}
+
+TEST(IoAtomicFile, SignalHandlerCallsThePreviousOneAndLeavesAnIgnoredSignalIgnored)
+{
+  Temp_dir dir("icm_test_io");
+  const std::string obj = dir.file("out.obj"), svg = dir.file("out.svg");
+  // A handler of the program's own, installed before the writing: called after the cleanup.
+  int status = wait_status_of_child([&] {
+    ::signal(SIGTERM, exit_42);
+    write_interrupted_by(SIGTERM, obj, svg);
+  });
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 42) << "wait status " << status;
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+  // An ignored signal stays ignored: the files are written.
+  status = wait_status_of_child([&] {
+    ::signal(SIGTERM, SIG_IGN);
+    write_interrupted_by(SIGTERM, obj, svg);
+  });
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "wait status " << status;
+  EXPECT_EQ(read_text(svg), "<svg></svg>\n");
+  EXPECT_EQ(dir.number_of_entries(), 2u);
+}
+#endif
 
 // ------------------------------------------------------------------------------------------
 // log_area_ratios

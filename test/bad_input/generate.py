@@ -157,8 +157,9 @@ write("off_two_tetrahedra_one_vertex.off",
 write("off_nonmanifold_edge.off",
       off([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)], [(0, 1, 2), (1, 0, 3), (0, 1, 4)]), 1,
       "non-manifold edge")
-write("off_inconsistent_orientation.off", off(P, [(T[0][0], T[0][2], T[0][1])] + T[1:]), 1,
-      "orientations disagree")
+# The first face against the 17 others: it is the one reversed, not the others.
+write("off_inconsistent_orientation.off", off(P, [(T[0][0], T[0][2], T[0][1])] + T[1:]), 0,
+      "reoriented 1 face to agree with the faces around it: 0")
 # A Moebius strip: no consistent orientation exists.
 mob_pts, mob_tris, m = [], [], 8
 for k in range(m):
@@ -170,14 +171,22 @@ for k in range(m):
     i0, i1 = 2 * k, 2 * k + 1
     j0, j1 = (2 * k + 2, 2 * k + 3) if k < m - 1 else (1, 0)
     mob_tris += [(i0, j0, j1), (i0, j1, i1)]
-write("off_moebius.off", off(mob_pts, mob_tris), 1, "orientations disagree")
+write("off_moebius.off", off(mob_pts, mob_tris), 1, "the surface is not orientable")
 write("off_quads.off", off(quad_pts, quads), 1, "non-triangle faces")
 cases.append(("off_quads.off", "--triangulate", 0, "triangulated 2 polygons"))
 write("off_degenerate_face.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n", 1,
       "degenerate")
 write("off_all_corners_equal.off", "OFF\n4 2 0\n0 0 0\n0 0 0\n0 0 0\n1 1 0\n3 0 1 2\n3 0 2 3\n", 1, "degenerate")
 write("off_no_faces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", 1, "no faces")
-write("off_face_listed_twice.off", off(P, T + [T[0]]), 1, "orientations disagree")
+write("off_face_listed_twice.off", off(P, T + [T[0]]), 1, "a face listed twice")
+# A plane heptagon, simple and as the star {7/2} whose sides cross: CGAL's triangulate_face
+# crashed on the star.
+hept = [(math.cos(2 * math.pi * k / 7), math.sin(2 * math.pi * k / 7), 0.0) for k in range(7)]
+write("off_heptagon.off", off(hept, [tuple(range(7))]), 1, "non-triangle faces")
+cases.append(("off_heptagon.off", "--triangulate", 0, "triangulated 1 polygon"))
+write("off_heptagon_self_crossing.off", off(hept, [tuple(2 * k % 7 for k in range(7))]), 1, "non-triangle faces")
+cases.append(("off_heptagon_self_crossing.off", "--triangulate", 1,
+              "its side from vertex 2 to vertex 4 meets its side from vertex 1 to vertex 3 on its best-fit plane"))
 # --- topologies that must work: closed, genus 1, two components --------------------------------
 def uv_sphere(n=6, m=8):
     pts = [(0, 0, 1)] + [(math.sin(math.pi * i / n) * math.cos(2 * math.pi * j / m),
@@ -218,6 +227,18 @@ write("scale_1e+300.off", off(grid(1e300)[0], T), 0, "")
 write("scale_1e-300.obj", obj(grid(1e-300)[0], T), 0, "")
 write("scale_1e+300_binary.ply", ply_binary(grid(1e300)[0], T, xyz="d", xyz_name="double"), 0, "")
 write("scale_offset_1e+12.off", off([(x + 1e12, y + 1e12, z) for x, y, z in P], T), 0, "")
+# A unit disk beside one 1e200 or 1e308 times larger: the reader no longer calls the small
+# faces degenerate (its corners at one point), but ICM::parameterize still does, on the whole
+# mesh's scale; expect 0 once it judges each component at its own.
+for big in (1e200, 1e308):
+    write(f"scale_two_disks_1e+{round(math.log10(big))}.off",
+          off(P + [(x * big / 2 + big / 2, y * big / 2, z * big / 2) for x, y, z in P],
+              T + [tuple(i + len(P) for i in t) for t in T]), 1, "component 0: 18 degenerate (zero-area) face(s)")
+# A disk so large that its layout, scaled back to it, overflows: the writer names the extent.
+write("scale_layout_overflow.off", off(grid(1.7e308)[0], T), 1, "scaled back to the mesh's extent")
+# Coordinates whose differences overflow a double: refused by the extent, not a face.
+write("scale_extent_overflow.off", off([(-1e308, 0, 0)] + P[1:-1] + [(1e308, 1, 0)], T), 1,
+      "the mesh's extent along x, from -1e+308 to 1e+308, is beyond the range of a double")
 
 # --- OBJ ---------------------------------------------------------------------------------------
 write("obj_valid_texture_normals.obj",

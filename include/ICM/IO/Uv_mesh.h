@@ -18,6 +18,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <locale>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -52,6 +54,44 @@ struct Uv_mesh
 /// (log 0 would be -inf or +inf, which neither plots nor sums well).
 constexpr double log_area_ratio_clamp = 50.;
 
+} // namespace IO
+
+namespace internal {
+
+/// A value formatted for a label or a message: up to 3 significant digits.
+inline std::string format_label(double x)
+{
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+/// Why a UV that is not finite overflowed, when it is infinite rather than NaN: parameterizers
+/// lay a mesh out at unit size and scale the UVs back to the mesh's (each chart's UV area is
+/// its 3D area), and near the largest double the layout can outgrow it. Empty for a NaN.
+inline std::string why_uvs_overflow(const IO::Uv_mesh& m, const std::array<double, 2>& uv)
+{
+  if(std::isnan(uv[0]) || std::isnan(uv[1]))
+    return {};
+  double extent = 0.;
+  for(int k = 0; k < 3 && !m.positions.empty(); ++k) {
+    double low = m.positions[0][k], high = low;
+    for(const auto& p : m.positions) {
+      low = (std::min)(low, p[k]);
+      high = (std::max)(high, p[k]);
+    }
+    extent = (std::max)(extent, high - low);
+  }
+  return ": the layout, scaled back to the mesh's extent (" + format_label(extent) +
+         "), is beyond the range of a double (scale the mesh down)";
+}
+
+} // namespace internal
+
+namespace IO {
+
 /// Checks that the face arrays have the same size, that every index is in range and that every
 /// coordinate is finite. On failure fills `error` with a one-line reason and returns false.
 inline bool is_valid_uv_mesh(const Uv_mesh& m, std::string& error)
@@ -80,7 +120,7 @@ inline bool is_valid_uv_mesh(const Uv_mesh& m, std::string& error)
   }
   for(std::size_t i = 0; i < m.uvs.size(); ++i) {
     if(!std::isfinite(m.uvs[i][0]) || !std::isfinite(m.uvs[i][1])) {
-      error = "UV " + std::to_string(i) + " is not finite";
+      error = "UV " + std::to_string(i) + " is not finite" + internal::why_uvs_overflow(m, m.uvs[i]);
       return false;
     }
   }

@@ -3,11 +3,12 @@
 // From an untrusted file to a triangle mesh the parameterizers can take, with the repairs
 // users expect and nothing else: the file is read as a polygon soup (read_polygon_soup.h),
 // vertices in no face are dropped, a vertex whose faces form several fans is split into one
-// vertex per fan, polygons are triangulated when asked to. Everything else that would not
-// make a consistently oriented 2-manifold (an edge in three faces, two faces that disagree
-// on their orientation, a degenerate face, polygons when triangulation was not asked for) is
-// refused, naming the faces (and their lines) and the vertices at fault. Every repair made
-// is listed in the report.
+// vertex per fan, faces that disagree with their neighbours on the orientation are reversed,
+// polygons are triangulated when asked to. Everything else that would not make an oriented
+// 2-manifold (an edge in three faces, a face listed twice, a surface that cannot be oriented,
+// coordinates whose differences overflow, a degenerate face, a polygon that crosses itself,
+// polygons when triangulation was not asked for) is refused, naming the faces (and their
+// lines) and the vertices at fault. Every repair made is listed in the report.
 //
 // Vertex numbering of the result: the file's vertices in the file's order without the
 // dropped ones, then one more vertex per extra fan of each split vertex (STL: corners at the
@@ -17,6 +18,7 @@
 #ifndef ICM_IO_READ_TRIANGLE_MESH_H
 #define ICM_IO_READ_TRIANGLE_MESH_H
 
+#include <ICM/IO/Soup_checks.h>
 #include <ICM/IO/read_polygon_soup.h>
 
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -54,6 +56,9 @@ struct Mesh_reading_report
   std::size_t file_vertices = 0, file_faces = 0;
   std::vector<std::size_t> isolated_vertices;  ///< file indices of the vertices dropped
   std::vector<std::size_t> split_vertices;     ///< file index of each vertex copy added
+  /// File indices of the faces reversed to agree with the faces around them (the orientation
+  /// most faces of each connected component have is kept).
+  std::vector<std::size_t> reoriented_faces;
   std::size_t triangulated_faces = 0;          ///< polygons split into triangles
   std::size_t non_triangle_faces = 0;          ///< polygons found (refused unless triangulated)
   /// The file's index of each vertex of the mesh, in `vertices(mesh)` order.
@@ -78,6 +83,10 @@ struct Mesh_reading_report
                       (distinct.size() == 1 ? "ex" : "ices") + " into one vertex per fan of faces (" +
                       std::to_string(split_vertices.size()) + " added): " + list_of(distinct));
     }
+    if(!reoriented_faces.empty())
+      lines.push_back("reoriented " + std::to_string(reoriented_faces.size()) + " face" +
+                      (reoriented_faces.size() == 1 ? "" : "s") + " to agree with the faces around " +
+                      (reoriented_faces.size() == 1 ? "it" : "them") + ": " + list_of(reoriented_faces));
     if(triangulated_faces > 0)
       lines.push_back("triangulated " + std::to_string(triangulated_faces) + " polygon" +
                       (triangulated_faces == 1 ? "" : "s"));
@@ -102,205 +111,129 @@ private:
 namespace internal {
 namespace reading {
 
-/// Drops the points of no polygon, keeping the others in their order (CGAL's
-/// `remove_isolated_points_in_polygon_soup` moves the last points into the holes, which
-/// would renumber vertices the user may refer to). Returns the old index of each point kept.
-inline std::vector<std::size_t> remove_isolated_points_in_order(Polygon_soup& soup,
-                                                                std::vector<std::size_t>& isolated)
+/// Records the vertices `orient_polygon_soup` duplicates and the polygons it reverses.
+struct Orientation_recorder : CGAL::Polygon_mesh_processing::Default_orientation_visitor
 {
-  std::vector<char> used(soup.points.size(), 0);
-  for(const auto& polygon : soup.polygons)
-    for(std::size_t i : polygon)
-      used[i] = 1;
-  std::vector<std::size_t> kept, new_index(soup.points.size());
-  std::size_t next = 0;
-  for(std::size_t i = 0; i < soup.points.size(); ++i)
-  {
-    if(!used[i])
-    {
-      isolated.push_back(i);
-      continue;
-    }
-    new_index[i] = next;
-    soup.points[next++] = soup.points[i];
-    kept.push_back(i);
-  }
-  soup.points.resize(next);
-  for(auto& polygon : soup.polygons)
-    for(std::size_t& i : polygon)
-      i = new_index[i];
-  return kept;
-}
-
-/// Union-find over the corners of a soup, to group the corners of one vertex into fans.
-class Corner_sets
-{
-public:
-  explicit Corner_sets(std::size_t n) : parent_(n)
-  {
-    for(std::size_t i = 0; i < n; ++i)
-      parent_[i] = i;
-  }
-  std::size_t find(std::size_t i)
-  {
-    while(parent_[i] != i)
-      i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
-
-private:
-  std::vector<std::size_t> parent_;
+  std::vector<std::array<std::size_t, 2>>* duplicated = nullptr;
+  std::vector<char>* reversed = nullptr;
+  void duplicated_vertex(std::size_t original, std::size_t copy) { duplicated->push_back({original, copy}); }
+  void polygon_orientation_reversed(std::size_t p) { (*reversed)[p] ^= 1; }
 };
 
-/// What `check_edges()` found when it refused nothing.
-struct Edge_check
+/// Turns every component whose majority orient_polygon_soup reversed back over (it keeps the
+/// orientation of each component's first polygon, which may be the odd one out): the faces
+/// reversed are then the fewest that make the component agree.
+inline void keep_majority_orientation(Polygon_soup& soup, const std::vector<std::size_t>& component,
+                                      std::vector<char>& reversed)
 {
-  std::string refusal;               ///< empty, or why the soup cannot be a manifold
-  bool has_singular_vertices = false; ///< a vertex whose faces form more than one fan
-};
-
-/// Refuses an edge in more than two faces, or in two faces that run along it the same way
-/// (inconsistent orientations, or a surface that cannot be oriented): the repairs stop at
-/// vertices. Otherwise says whether some vertex has several fans of faces, so that the
-/// splitting (CGAL's orient_polygon_soup, the costliest step of reading) runs only when it
-/// has something to do. `file_vertex` names vertices as the file does.
-inline Edge_check check_edges(const Polygon_soup& soup, const std::vector<std::size_t>& file_vertex)
-{
-  struct Side
-  {
-    std::size_t low, high, polygon, corner; // corner: where the side starts in its polygon
-    bool forward;                            // low -> high in the polygon's order
-    bool operator<(const Side& o) const
-    {
-      return low != o.low ? low < o.low : high != o.high ? high < o.high : polygon < o.polygon;
-    }
-  };
-  std::vector<std::size_t> first_corner(soup.polygons.size() + 1, 0);
-  for(std::size_t p = 0; p < soup.polygons.size(); ++p)
-    first_corner[p + 1] = first_corner[p] + soup.polygons[p].size();
-  std::vector<Side> sides;
-  sides.reserve(first_corner.back());
+  std::vector<std::size_t> size(soup.polygons.size(), 0), reversed_in(soup.polygons.size(), 0);
   for(std::size_t p = 0; p < soup.polygons.size(); ++p)
   {
-    const auto& polygon = soup.polygons[p];
-    for(std::size_t c = 0; c < polygon.size(); ++c)
-    {
-      const std::size_t a = polygon[c], b = polygon[(c + 1) % polygon.size()];
-      sides.push_back({std::min(a, b), std::max(a, b), p, c, a < b});
-    }
+    ++size[component[p]];
+    reversed_in[component[p]] += reversed[p];
   }
-  std::sort(sides.begin(), sides.end());
-  auto edge_name = [&](const Side& s) {
-    return "the edge between vertices " + std::to_string(file_vertex[s.low]) + " and " +
-           std::to_string(file_vertex[s.high]);
-  };
-  // The corner of `polygon` at the start (`at_end` false) or the end of side `s`.
-  auto corner = [&](const Side& s, bool at_end) {
-    const std::size_t n = soup.polygons[s.polygon].size();
-    return first_corner[s.polygon] + (at_end ? (s.corner + 1) % n : s.corner);
-  };
-  Corner_sets fans(first_corner.back());
-  Edge_check result;
-  for(std::size_t s = 0; s < sides.size();)
-  {
-    std::size_t t = s + 1;
-    while(t < sides.size() && sides[t].low == sides[s].low && sides[t].high == sides[s].high)
-      ++t;
-    if(t - s > 2)
+  for(std::size_t p = 0; p < soup.polygons.size(); ++p)
+    if(2 * reversed_in[component[p]] > size[component[p]])
     {
-      result.refusal = edge_name(sides[s]) + " is shared by " + std::to_string(t - s) + " faces (" +
-                       soup.describe_polygon(sides[s].polygon) + ", " + soup.describe_polygon(sides[s + 1].polygon) +
-                       ", " + soup.describe_polygon(sides[s + 2].polygon) + (t - s > 3 ? ", ..." : "") +
-                       "): a non-manifold edge";
-      return result;
+      std::reverse(soup.polygons[p].begin(), soup.polygons[p].end());
+      reversed[p] ^= 1;
     }
-    if(t - s == 2)
-    {
-      if(sides[s].forward == sides[s + 1].forward)
-      {
-        result.refusal = soup.describe_polygon(sides[s].polygon) + " and " +
-                         soup.describe_polygon(sides[s + 1].polygon) + " run along " + edge_name(sides[s]) +
-                         " in the same direction: their orientations disagree (the faces are not consistently "
-                         "oriented, or the surface is not orientable)";
-        return result;
-      }
-      // The two faces run along the edge in opposite directions: the start of one side is
-      // the end of the other, and across the edge the corners there are one fan.
-      fans.join(corner(sides[s], false), corner(sides[s + 1], true));
-      fans.join(corner(sides[s], true), corner(sides[s + 1], false));
-    }
-    s = t;
-  }
-  std::vector<std::size_t> fan_of(soup.points.size(), first_corner.back());
-  for(std::size_t p = 0; p < soup.polygons.size() && !result.has_singular_vertices; ++p)
-    for(std::size_t c = 0; c < soup.polygons[p].size(); ++c)
-    {
-      std::size_t& fan = fan_of[soup.polygons[p][c]];
-      const std::size_t root = fans.find(first_corner[p] + c);
-      if(fan != first_corner.back() && fan != root)
-        result.has_singular_vertices = true;
-      fan = root;
-    }
-  return result;
 }
 
-/// Refuses a triangle with (relatively) no area: area <= 1e-14 longest edge^2, the test of
-/// `Mesh_index`, on coordinates scaled to the soup's bounding box so that tiny or huge
-/// meshes neither underflow nor overflow.
-inline std::string check_triangle_areas(const Polygon_soup& soup)
+/// Reverses the faces that disagree with their component and makes a vertex whose faces form
+/// several fans one vertex per fan, both with CGAL's orient_polygon_soup (on a soup:
+/// duplicate_non_manifold_vertices needs a mesh, and a mesh cannot be built through such a
+/// vertex). Returns why it could not, or empty; the repairs go into `report`.
+inline std::string orient_and_split(Polygon_soup& soup, const Edge_check& edges, IO::Mesh_reading_report& report)
 {
-  if(soup.points.empty())
+  if(!edges.has_singular_vertices && !edges.has_disagreeing_faces)
     return {};
-  std::array<double, 3> low{}, high{};
-  for(int k = 0; k < 3; ++k)
-    low[k] = high[k] = soup.points[0][k];
-  for(const auto& p : soup.points)
-    for(int k = 0; k < 3; ++k)
-    {
-      low[k] = std::min(low[k], p[k]);
-      high[k] = std::max(high[k], p[k]);
-    }
-  double extent = 0;
-  for(int k = 0; k < 3; ++k)
-    extent = std::max(extent, high[k] / 2 - low[k] / 2); // halves: no overflow near DBL_MAX
-  if(!(extent > 0))
-    extent = 1;
-  auto scaled = [&](std::size_t i) {
-    const auto& p = soup.points[i];
-    return std::array<double, 3>{(p[0] - (low[0] / 2 + high[0] / 2)) / extent,
-                                 (p[1] - (low[1] / 2 + high[1] / 2)) / extent,
-                                 (p[2] - (low[2] / 2 + high[2] / 2)) / extent};
-  };
-  for(std::size_t f = 0; f < soup.polygons.size(); ++f)
+  std::vector<std::array<std::size_t, 2>> duplicated;
+  std::vector<char> reversed(soup.polygons.size(), 0);
+  Orientation_recorder recorder;
+  recorder.duplicated = &duplicated;
+  recorder.reversed = &reversed;
+  CGAL::Polygon_mesh_processing::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(recorder));
+  if(edges.has_disagreeing_faces)
+    keep_majority_orientation(soup, edges.component, reversed);
+  else if(std::find(reversed.begin(), reversed.end(), 1) != reversed.end())
+    return "the faces could not keep their orientation when non-manifold vertices were split";
+  for(std::size_t p = 0; p < reversed.size(); ++p)
+    if(reversed[p])
+      report.reoriented_faces.push_back(p); // the soup's polygons are the file's faces, in order
+  for(const auto& [original, copy] : duplicated)
   {
-    const auto& t = soup.polygons[f];
-    if(t.size() != 3)
-      continue;
-    const std::array<double, 3> a = scaled(t[0]), b = scaled(t[1]), c = scaled(t[2]);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double w[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double longest = std::max({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
-                                     w[0] * w[0] + w[1] * w[1] + w[2] * w[2]});
-    if(!(area > 1e-14 * longest))
-      return soup.describe_polygon(f) + " is degenerate (zero area: its corners are " +
-             (longest > 0 ? "collinear)" : "at one point)");
+    if(copy != report.file_vertex.size())
+      return "the non-manifold vertices could not be split in order";
+    report.file_vertex.push_back(report.file_vertex[original]);
+    report.split_vertices.push_back(report.file_vertex[original]);
   }
   return {};
 }
 
-/// Records the vertices `orient_polygon_soup` duplicates, and whether it had to reverse a
-/// polygon (it must not: orientations were checked before).
-struct Split_recorder : CGAL::Polygon_mesh_processing::Default_orientation_visitor
+/// Why the soup cannot be a triangle mesh with the repairs of `options`, or empty: counts
+/// its polygons into `report` and refuses them unless triangulation was asked for, then
+/// checks its edges, its extent, its triangles and its polygons.
+inline std::string check_soup(const Polygon_soup& soup, const IO::Mesh_reading_options& options,
+                              IO::Mesh_reading_report& report, Edge_check& edges)
 {
-  std::vector<std::array<std::size_t, 2>>* duplicated = nullptr;
-  bool* reversed = nullptr;
-  void duplicated_vertex(std::size_t original, std::size_t copy) { duplicated->push_back({original, copy}); }
-  void polygon_orientation_reversed(std::size_t) { *reversed = true; }
-};
+  std::string why;
+  for(std::size_t p = 0; p < soup.polygons.size(); ++p)
+    if(soup.polygons[p].size() > 3 && report.non_triangle_faces++ == 0 && !options.triangulate)
+      why = "non-triangle faces: " + soup.describe_polygon(p) + " has " + std::to_string(soup.polygons[p].size()) +
+            " sides";
+  if(!why.empty())
+    return why + (report.non_triangle_faces > 1
+                    ? " (" + std::to_string(report.non_triangle_faces) + " faces have more than 3)"
+                    : std::string());
+  edges = check_edges(soup, report.file_vertex);
+  why = edges.refusal;
+  if(why.empty())
+    why = check_extent(soup);
+  if(why.empty() && options.refuse_degenerate_faces)
+    why = check_triangle_areas(soup);
+  for(std::size_t p = 0; p < soup.polygons.size() && why.empty(); ++p)
+    if(soup.polygons[p].size() > 3)
+      why = why_not_triangulable(soup, p, report.file_vertex);
+  return why;
+}
+
+/// Triangulates the faces of `mesh` with more than 3 sides (the soup's polygons, in order),
+/// counting them into `report`; returns why one could not be, or empty.
+template <class PolygonMesh>
+std::string triangulate_polygons(PolygonMesh& mesh, const Polygon_soup& soup, IO::Mesh_reading_report& report)
+{
+  // Faces of the mesh are the soup's polygons in order: polygon p is the p-th face.
+  std::vector<typename boost::graph_traits<PolygonMesh>::face_descriptor> polygons;
+  std::vector<std::size_t> numbers;
+  std::size_t p = 0;
+  for(auto f : faces(mesh))
+  {
+    if(degree(f, mesh) > 3)
+    {
+      polygons.push_back(f);
+      numbers.push_back(p);
+    }
+    ++p;
+  }
+  for(std::size_t i = 0; i < polygons.size(); ++i)
+  {
+    bool done = false;
+    try
+    {
+      done = CGAL::Polygon_mesh_processing::triangulate_face(polygons[i], mesh);
+    }
+    catch(const std::exception&)
+    {
+      done = false;
+    }
+    if(!done)
+      return soup.describe_polygon(numbers[i]) + " (" + std::to_string(soup.polygons[numbers[i]].size()) +
+             " sides) cannot be triangulated (its corners do not span a plane polygon, or its sides cross)";
+    ++report.triangulated_faces;
+  }
+  return {};
+}
 
 } // namespace reading
 } // namespace internal
@@ -334,83 +267,20 @@ bool polygon_soup_to_triangle_mesh(Polygon_soup& soup, PolygonMesh& mesh, Mesh_r
                   (file_vertices > 0 ? " (only " + std::to_string(file_vertices) + " vertices)" : std::string()));
 
   report.file_vertex = internal::remove_isolated_points_in_order(soup, report.isolated_vertices);
-
-  for(std::size_t p = 0; p < soup.polygons.size(); ++p)
-    if(soup.polygons[p].size() > 3)
-    {
-      if(report.non_triangle_faces++ == 0 && !options.triangulate)
-        report.message = "non-triangle faces: " + soup.describe_polygon(p) + " has " +
-                         std::to_string(soup.polygons[p].size()) + " sides";
-    }
-  if(!report.message.empty())
-    return refuse(report.message + (report.non_triangle_faces > 1
-                                      ? " (" + std::to_string(report.non_triangle_faces) + " faces have more than 3)"
-                                      : std::string()));
-
-  const internal::Edge_check edges = internal::check_edges(soup, report.file_vertex);
-  std::string why = edges.refusal;
-  if(why.empty() && options.refuse_degenerate_faces)
-    why = internal::check_triangle_areas(soup);
+  internal::Edge_check edges;
+  std::string why = internal::check_soup(soup, options, report, edges);
+  if(why.empty())
+    why = internal::orient_and_split(soup, edges, report);
   if(!why.empty())
     return refuse(why);
-
-  // A vertex whose faces form several fans becomes one vertex per fan: CGAL's
-  // orient_polygon_soup does that on a soup (duplicate_non_manifold_vertices needs a mesh,
-  // and a mesh cannot be built through such a vertex); with orientations already consistent
-  // it reverses nothing.
-  std::vector<std::array<std::size_t, 2>> duplicated;
-  bool reversed = false;
-  internal::Split_recorder recorder;
-  recorder.duplicated = &duplicated;
-  recorder.reversed = &reversed;
-  if(edges.has_singular_vertices)
-    PMP::orient_polygon_soup(soup.points, soup.polygons, CGAL::parameters::visitor(recorder));
-  if(reversed)
-    return refuse("the faces could not keep their orientation when non-manifold vertices were split");
-  for(const auto& [original, copy] : duplicated)
-  {
-    if(copy != report.file_vertex.size())
-      return refuse("the non-manifold vertices could not be split in order");
-    report.file_vertex.push_back(report.file_vertex[original]);
-    report.split_vertices.push_back(report.file_vertex[original]);
-  }
   // Edges in at most two faces, orientations consistent, one fan per vertex: the soup is a
   // polygon mesh (polygon_soup_to_polygon_mesh asserts it in debug builds; checking it
   // again here would cost a fifth of the reading time).
   PMP::polygon_soup_to_polygon_mesh(soup.points, soup.polygons, mesh);
-
   if(report.non_triangle_faces > 0)
-  {
-    // Faces of the mesh are the soup's polygons in order: polygon p is the p-th face.
-    std::vector<typename boost::graph_traits<PolygonMesh>::face_descriptor> polygons;
-    std::vector<std::size_t> numbers;
-    std::size_t p = 0;
-    for(auto f : faces(mesh))
-    {
-      if(degree(f, mesh) > 3)
-      {
-        polygons.push_back(f);
-        numbers.push_back(p);
-      }
-      ++p;
-    }
-    for(std::size_t i = 0; i < polygons.size(); ++i)
-    {
-      bool done = false;
-      try
-      {
-        done = PMP::triangulate_face(polygons[i], mesh);
-      }
-      catch(const std::exception&)
-      {
-        done = false;
-      }
-      if(!done)
-        return refuse(soup.describe_polygon(numbers[i]) + " (" + std::to_string(soup.polygons[numbers[i]].size()) +
-                      " sides) cannot be triangulated (its corners do not span a plane polygon, or its sides cross)");
-      ++report.triangulated_faces;
-    }
-  }
+    why = internal::triangulate_polygons(mesh, soup, report);
+  if(!why.empty())
+    return refuse(why);
   if(!CGAL::is_triangle_mesh(mesh))
     return refuse("the mesh is not a triangle mesh after triangulation");
   return true;

@@ -14,9 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <locale>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,16 +79,6 @@ inline void put_coordinate(std::ostream& os, double x)
     if(frac % 10 != 0)
       os << static_cast<char>('0' + frac % 10);
   }
-}
-
-/// A value formatted for a label: up to 3 significant digits.
-inline std::string format_label(double x)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(3);
-  s << x;
-  return s.str();
 }
 
 /// Diverging blue - white - red colour map (the stops of ColorBrewer's RdBu) on t in [-1, 1].
@@ -229,46 +217,61 @@ inline bool check_svg_options(const IO::Svg_options& opt, std::string& reason)
   return true;
 }
 
-inline bool write_svg_panels(std::ostream& os,
-                             const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
-                             const IO::Svg_options& opt)
+/// Where the parts of a picture of panels go: a title band, a band of panel names, the
+/// squares of the layouts, the colour bar.
+struct Svg_frame
 {
-  const double title_h = opt.title.empty() ? 0. : 40.;
-  bool any_panel_title = false;
-  for(const auto& p : panels)
-    any_panel_title = any_panel_title || !p.first.empty();
-  const double panel_title_h = any_panel_title ? 30. : 0.;
-  const double legend_h = opt.legend ? 64. : 0.;
-  const double width = opt.size * static_cast<double>((std::max)(std::size_t(1), panels.size()));
-  const double height = title_h + panel_title_h + opt.size + legend_h;
+  double title_h = 0., panel_title_h = 0., legend_h = 0., width = 0., height = 0.;
 
+  Svg_frame(const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels, const IO::Svg_options& opt)
+  {
+    title_h = opt.title.empty() ? 0. : 40.;
+    bool any_panel_title = false;
+    for(const auto& p : panels)
+      any_panel_title = any_panel_title || !p.first.empty();
+    panel_title_h = any_panel_title ? 30. : 0.;
+    legend_h = opt.legend ? 64. : 0.;
+    width = opt.size * static_cast<double>((std::max)(std::size_t(1), panels.size()));
+    height = title_h + panel_title_h + opt.size + legend_h;
+  }
+};
+
+/// The `<svg>` element, a white background and the title.
+inline void put_svg_start(std::ostream& os, const Svg_frame& frame, const IO::Svg_options& opt)
+{
   os << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 ";
-  put_coordinate(os, width);
+  put_coordinate(os, frame.width);
   os << ' ';
-  put_coordinate(os, height);
+  put_coordinate(os, frame.height);
   os << "\" width=\"";
-  put_coordinate(os, width);
+  put_coordinate(os, frame.width);
   os << "\" height=\"";
-  put_coordinate(os, height);
+  put_coordinate(os, frame.height);
   os << "\" font-family=\"sans-serif\">\n";
   os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
 
   if(!opt.title.empty()) {
     os << "<text x=\"";
-    put_coordinate(os, 0.5 * width);
+    put_coordinate(os, 0.5 * frame.width);
     os << "\" y=\"28\" font-size=\"22\" text-anchor=\"middle\">" << svg_escape(opt.title)
        << "</text>\n";
   }
+}
 
+/// Every layout in its square, with its name above it and its count of flipped faces.
+/// Returns the flipped faces of all layouts.
+inline std::size_t put_svg_panels(std::ostream& os, const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
+                                  const Svg_frame& frame, const IO::Svg_options& opt)
+{
   std::size_t total_flipped = 0;
   for(std::size_t i = 0; i < panels.size(); ++i) {
     const double x0 = opt.size * static_cast<double>(i);
-    const double y0 = title_h + panel_title_h;
+    const double y0 = frame.title_h + frame.panel_title_h;
     if(!panels[i].first.empty()) {
       os << "<text x=\"";
       put_coordinate(os, x0 + 0.5 * opt.size);
       os << "\" y=\"";
-      put_coordinate(os, title_h + 22.);
+      put_coordinate(os, frame.title_h + 22.);
       os << "\" font-size=\"18\" text-anchor=\"middle\">" << svg_escape(panels[i].first)
          << "</text>\n";
     }
@@ -283,57 +286,73 @@ inline bool write_svg_panels(std::ostream& os,
          << (flipped > 1 ? "s" : "") << "</text>\n";
     }
   }
+  return total_flipped;
+}
 
-  if(opt.legend) {
-    const double bar_w = (std::min)(400., 0.8 * width);
-    const double bar_x = 0.5 * (width - bar_w);
-    const double bar_y = title_h + panel_title_h + opt.size + 8.;
-    const double r = opt.log_ratio_range;
-    os << "<defs><linearGradient id=\"icm_log_area_ratio\" x1=\"0\" x2=\"1\" y1=\"0\" y2=\"0\">";
-    for(int s = 0; s <= 8; ++s) {
-      os << "<stop offset=\"" << s * 12.5 << "%\" stop-color=\"";
-      put_colour(os, diverging_colour(-1. + s / 4.));
-      os << "\"/>";
-    }
-    os << "</linearGradient></defs>\n";
+/// The colour bar below the panels, with its labels, and the key of flipped faces if any.
+inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::Svg_options& opt,
+                           std::size_t total_flipped)
+{
+  const double width = frame.width;
+  const double bar_w = (std::min)(400., 0.8 * width);
+  const double bar_x = 0.5 * (width - bar_w);
+  const double bar_y = frame.title_h + frame.panel_title_h + opt.size + 8.;
+  const double r = opt.log_ratio_range;
+  os << "<defs><linearGradient id=\"icm_log_area_ratio\" x1=\"0\" x2=\"1\" y1=\"0\" y2=\"0\">";
+  for(int s = 0; s <= 8; ++s) {
+    os << "<stop offset=\"" << s * 12.5 << "%\" stop-color=\"";
+    put_colour(os, diverging_colour(-1. + s / 4.));
+    os << "\"/>";
+  }
+  os << "</linearGradient></defs>\n";
+  os << "<rect x=\"";
+  put_coordinate(os, bar_x);
+  os << "\" y=\"";
+  put_coordinate(os, bar_y);
+  os << "\" width=\"";
+  put_coordinate(os, bar_w);
+  os << "\" height=\"14\" fill=\"url(#icm_log_area_ratio)\" stroke=\"#222222\" "
+        "stroke-width=\"0.5\"/>\n";
+  const double label_y = bar_y + 30.;
+  const std::pair<double, std::string> labels[3] = {
+      {bar_x, "-" + format_label(r)}, {bar_x + 0.5 * bar_w, "0"},
+      {bar_x + bar_w, "+" + format_label(r)}};
+  for(const auto& l : labels) {
+    os << "<text x=\"";
+    put_coordinate(os, l.first);
+    os << "\" y=\"";
+    put_coordinate(os, label_y);
+    os << "\" font-size=\"13\" text-anchor=\"middle\">" << l.second << "</text>\n";
+  }
+  os << "<text x=\"";
+  put_coordinate(os, 0.5 * width);
+  os << "\" y=\"";
+  put_coordinate(os, label_y + 18.);
+  os << "\" font-size=\"13\" text-anchor=\"middle\">"
+        "log(UV area / 3D area), UV scaled to the total 3D area</text>\n";
+  if(total_flipped > 0) {
     os << "<rect x=\"";
-    put_coordinate(os, bar_x);
+    put_coordinate(os, bar_x + bar_w + 16.);
     os << "\" y=\"";
     put_coordinate(os, bar_y);
-    os << "\" width=\"";
-    put_coordinate(os, bar_w);
-    os << "\" height=\"14\" fill=\"url(#icm_log_area_ratio)\" stroke=\"#222222\" "
-          "stroke-width=\"0.5\"/>\n";
-    const double label_y = bar_y + 30.;
-    const std::pair<double, std::string> labels[3] = {
-        {bar_x, "-" + format_label(r)}, {bar_x + 0.5 * bar_w, "0"},
-        {bar_x + bar_w, "+" + format_label(r)}};
-    for(const auto& l : labels) {
-      os << "<text x=\"";
-      put_coordinate(os, l.first);
-      os << "\" y=\"";
-      put_coordinate(os, label_y);
-      os << "\" font-size=\"13\" text-anchor=\"middle\">" << l.second << "</text>\n";
-    }
-    os << "<text x=\"";
-    put_coordinate(os, 0.5 * width);
+    os << "\" width=\"14\" height=\"14\" fill=\"#000000\" stroke=\"#00ff00\" "
+          "stroke-width=\"1\"/>\n<text x=\"";
+    put_coordinate(os, bar_x + bar_w + 36.);
     os << "\" y=\"";
-    put_coordinate(os, label_y + 18.);
-    os << "\" font-size=\"13\" text-anchor=\"middle\">"
-          "log(UV area / 3D area), UV scaled to the total 3D area</text>\n";
-    if(total_flipped > 0) {
-      os << "<rect x=\"";
-      put_coordinate(os, bar_x + bar_w + 16.);
-      os << "\" y=\"";
-      put_coordinate(os, bar_y);
-      os << "\" width=\"14\" height=\"14\" fill=\"#000000\" stroke=\"#00ff00\" "
-            "stroke-width=\"1\"/>\n<text x=\"";
-      put_coordinate(os, bar_x + bar_w + 36.);
-      os << "\" y=\"";
-      put_coordinate(os, bar_y + 12.);
-      os << "\" font-size=\"13\">flipped</text>\n";
-    }
+    put_coordinate(os, bar_y + 12.);
+    os << "\" font-size=\"13\">flipped</text>\n";
   }
+}
+
+inline bool write_svg_panels(std::ostream& os,
+                             const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
+                             const IO::Svg_options& opt)
+{
+  const Svg_frame frame(panels, opt);
+  put_svg_start(os, frame, opt);
+  const std::size_t total_flipped = put_svg_panels(os, panels, frame, opt);
+  if(opt.legend)
+    put_svg_legend(os, frame, opt, total_flipped);
   os << "</svg>\n";
   return static_cast<bool>(os);
 }

@@ -4,12 +4,16 @@
 // a fresh temporary file next to the target, which is renamed over the target only once
 // everything was written and flushed without error. A crash, a full disk or a failing writer
 // therefore never leaves a truncated file behind, and never destroys the user's previous file.
+// An interrupt (SIGINT, SIGTERM) while the files are written leaves no temporary either: the
+// live temporaries are registered where a signal handler can remove them.
 
 #ifndef ICM_INTERNAL_ATOMIC_FILE_H
 #define ICM_INTERNAL_ATOMIC_FILE_H
 
 #include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -17,6 +21,7 @@
 #include <fstream>
 #include <functional>
 #include <locale>
+#include <mutex>
 #include <ostream>
 #include <string>
 #include <system_error>
@@ -29,6 +34,7 @@
 #  include <sys/stat.h>
 #else
 #  include <fcntl.h>
+#  include <signal.h>
 #  include <unistd.h>
 #endif
 
@@ -113,6 +119,133 @@ inline bool same_file(const std::string& a, const std::string& b)
   return resolved(a) == resolved(b);
 }
 
+/// The temporary files that exist now, for a signal handler to remove: fixed slots of path
+/// buffers, so that the handler neither allocates nor locks. A slot is filled after its file
+/// was created and freed after the file was renamed or removed, so the handler never removes
+/// a name that is not (or no longer) one of ours; a temporary that finds no free slot, or a
+/// longer path, is written all the same, only without that protection.
+struct Temporary_registry
+{
+  static constexpr std::size_t slots = 16;
+  static constexpr std::size_t path_size = 4096;
+  enum State : int { Free, Filling, Live };
+  std::atomic<int> state[slots];
+  char path[slots][path_size];
+};
+
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+
+/// Zero-initialised before any code runs: every slot is free.
+inline Temporary_registry temporary_registry;
+
+/// Removes every live temporary; async-signal-safe.
+inline void remove_registered_temporaries()
+{
+  for(std::size_t i = 0; i < Temporary_registry::slots; ++i)
+    if(temporary_registry.state[i].load() == Temporary_registry::Live)
+#ifdef _WIN32
+      ::_unlink(temporary_registry.path[i]);
+#else
+      ::unlink(temporary_registry.path[i]);
+#endif
+}
+
+#ifndef _WIN32
+/// What SIGINT and SIGTERM did before the handler below was installed.
+inline struct sigaction previous_signal_actions[2];
+
+inline int signal_slot(int sig) { return sig == SIGINT ? 0 : 1; }
+
+/// Removes the live temporaries, then does what the signal did before: the previous handler,
+/// or the default action (the signal is raised again with the default disposition, so the
+/// process still dies by it and its parent sees that).
+inline void remove_temporaries_on_signal(int sig, siginfo_t* info, void* context)
+{
+  const int saved_errno = errno;
+  remove_registered_temporaries();
+  const struct sigaction& previous = previous_signal_actions[signal_slot(sig)];
+  if((previous.sa_flags & SA_SIGINFO) != 0 && previous.sa_sigaction != nullptr &&
+     previous.sa_sigaction != remove_temporaries_on_signal)
+    previous.sa_sigaction(sig, info, context);
+  else if((previous.sa_flags & SA_SIGINFO) == 0 && previous.sa_handler != SIG_DFL && previous.sa_handler != SIG_IGN)
+    previous.sa_handler(sig);
+  else
+  {
+    struct sigaction default_action;
+    std::memset(&default_action, 0, sizeof default_action);
+    default_action.sa_handler = SIG_DFL;
+    sigemptyset(&default_action.sa_mask);
+    ::sigaction(sig, &default_action, nullptr);
+    ::raise(sig); // delivered when this handler returns
+  }
+  errno = saved_errno;
+}
+#endif
+
+/// Installs the handler of SIGINT and SIGTERM when a temporary is made, unless it is the
+/// one there: a signal that is ignored stays ignored, and a handler found there (installed
+/// before the first temporary, or since) is called after the temporaries are removed.
+inline void install_temporary_cleanup()
+{
+#ifndef _WIN32
+  static std::mutex installing;
+  const std::lock_guard<std::mutex> lock(installing);
+  for(int sig : {SIGINT, SIGTERM})
+  {
+    struct sigaction current;
+    if(::sigaction(sig, nullptr, &current) != 0)
+      continue;
+    const bool has_info = (current.sa_flags & SA_SIGINFO) != 0;
+    if((has_info && current.sa_sigaction == remove_temporaries_on_signal) || (!has_info && current.sa_handler == SIG_IGN))
+      continue;
+    struct sigaction action;
+    std::memset(&action, 0, sizeof action);
+    action.sa_sigaction = remove_temporaries_on_signal;
+    action.sa_flags = SA_SIGINFO | SA_RESTART;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(sig, &action, &previous_signal_actions[signal_slot(sig)]);
+  }
+#endif
+}
+
+/// A path in the registry for as long as this lives (or until `release()`).
+class Registered_path
+{
+public:
+  Registered_path() = default;
+  Registered_path(const Registered_path&) = delete;
+  Registered_path& operator=(const Registered_path&) = delete;
+  ~Registered_path() { release(); }
+
+  void hold(const std::string& path)
+  {
+    release();
+    install_temporary_cleanup();
+    if(path.size() >= Temporary_registry::path_size)
+      return;
+    for(std::size_t i = 0; i < Temporary_registry::slots; ++i)
+    {
+      int expected = Temporary_registry::Free;
+      if(temporary_registry.state[i].compare_exchange_strong(expected, Temporary_registry::Filling))
+      {
+        std::memcpy(temporary_registry.path[i], path.c_str(), path.size() + 1);
+        temporary_registry.state[i].store(Temporary_registry::Live);
+        slot_ = static_cast<int>(i);
+        return;
+      }
+    }
+  }
+  void release()
+  {
+    if(slot_ >= 0)
+      temporary_registry.state[slot_].store(Temporary_registry::Free);
+    slot_ = -1;
+  }
+
+private:
+  int slot_ = -1;
+};
+
 /// One file for `write_files_atomically()`: its path and the function that writes its
 /// content into the stream it is given, returning whether it succeeded.
 struct Atomic_output
@@ -142,6 +275,7 @@ public:
       errno = 0;
       if(create_new_file(name)) {
         name_ = name;
+        registered_.hold(name_);
         return true;
       }
       err = errno;
@@ -201,6 +335,7 @@ public:
       return false;
     }
     name_.clear();
+    registered_.release();
     return true;
   }
 
@@ -209,12 +344,14 @@ public:
     if(!name_.empty())
       std::remove(name_.c_str());
     name_.clear();
+    registered_.release();
   }
 
   const std::string& name() const { return name_; }
 
 private:
   std::string name_;
+  Registered_path registered_;
 };
 
 /// Writes several files all or nothing.
@@ -263,12 +400,15 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
   {
     std::string backup;
     bool existed = false;
+    Registered_path registered; // the backup, removed by a signal handler too
   };
   std::vector<Previous> previous(outputs.size());
   auto drop_backups = [&]() {
-    for(const Previous& p : previous)
+    for(Previous& p : previous) {
       if(!p.backup.empty())
         std::remove(p.backup.c_str());
+      p.registered.release();
+    }
   };
   for(std::size_t i = 0; i < outputs.size() && outputs.size() > 1; ++i) {
     std::error_code ec;
@@ -281,8 +421,10 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
     const std::string backup = name.name();
     name.discard();
     std::filesystem::create_hard_link(outputs[i].path, backup, ec);
-    if(!ec)
+    if(!ec) {
       previous[i].backup = backup;
+      previous[i].registered.hold(backup);
+    }
   }
   for(std::size_t i = 0; i < outputs.size(); ++i) {
     if(temporaries[i].rename_to(outputs[i].path, reason))
@@ -291,8 +433,10 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
       std::error_code ec;
       if(!previous[j].backup.empty()) {
         std::filesystem::rename(previous[j].backup, outputs[j].path, ec);
-        if(!ec)
+        if(!ec) {
           previous[j].backup.clear();
+          previous[j].registered.release();
+        }
       } else if(!previous[j].existed)
         std::filesystem::remove(outputs[j].path, ec);
     }
