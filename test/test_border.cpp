@@ -18,6 +18,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/io.h>
 
 #include <Eigen/Dense>
@@ -26,6 +27,7 @@
 
 #include "test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -467,4 +469,34 @@ TEST(BorderConditionRefusals, BadCombinationsSayWhy)
   const Outcome genus = parameterize(eight, Parameterizer<ICM::Circle_domain>(), uv8);
   EXPECT_EQ(genus.status, SMP::ERROR_NO_TOPOLOGICAL_DISC);
   EXPECT_NE(genus.report.message.find("needs genus 0"), std::string::npos) << genus.report.message;
+}
+
+TEST(BorderConditionRefusals, AFaceWithEveryCornerOnAHoleIsRefusedByName)
+{
+  // A hole where an interior vertex's star was, but for one face: that face's corners are all
+  // on the hole's loop, so on the hole's circle it would lie in the hole. Refused by name
+  // before any solve (it used to fail as flipped faces, then in the circle packing's Newton).
+  Surface_mesh mesh;
+  ASSERT_TRUE(read_mesh("nefertiti.off", mesh));
+  vertex_descriptor centre = Surface_mesh::null_vertex();
+  for(vertex_descriptor v : vertices(mesh))
+    if(!is_border(v, mesh) && degree(v, mesh) >= 5 &&
+       std::none_of(CGAL::vertices_around_target(v, mesh).begin(), CGAL::vertices_around_target(v, mesh).end(),
+                    [&](vertex_descriptor w) { return is_border(w, mesh); }))
+    {
+      centre = v;
+      break;
+    }
+  ASSERT_NE(centre, Surface_mesh::null_vertex());
+  std::vector<Surface_mesh::Face_index> star;
+  for(auto f : CGAL::faces_around_target(halfedge(centre, mesh), mesh))
+    star.push_back(f);
+  for(std::size_t i = 1; i < star.size(); ++i)
+    CGAL::Euler::remove_face(halfedge(star[i], mesh), mesh);
+  mesh.collect_garbage();
+  auto uv = add_uv_map(mesh);
+  const Outcome run = parameterize(mesh, Parameterizer<ICM::Circle_domain>(), uv);
+  EXPECT_EQ(run.status, SMP::ERROR_NO_1_TO_1_MAPPING) << run.report.message;
+  EXPECT_NE(run.report.message.find("all three corners on one hole's border"), std::string::npos) << run.report.message;
+  EXPECT_EQ(run.report.fallback_reason, "") << "refused before any solve";
 }

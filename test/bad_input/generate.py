@@ -221,6 +221,20 @@ write("topology_two_disks.off", off(P + [(x + 3, y, z) for x, y, z in P], T + [t
       0, "")
 cases.append(("topology_sphere.off", "--cones 0", 1, "needs at least two cones"))
 
+
+# A 6 x 6 grid with a hole where an interior vertex's star was, but for one face: that face
+# has all three corners on the hole's loop, so on the hole's circle it would lie in the hole.
+def grid_with_an_ear(n=6):
+    pts, tris = grid(n=n)
+    centre = (n // 2) * n + n // 2
+    star = [t for t in tris if centre in t]
+    keep = star[0]
+    return pts, [t for t in tris if centre not in t or t == keep]
+
+
+write("topology_hole_ear.off", off(*grid_with_an_ear()), 1, "all three corners on one hole's border",
+      "--boundary circle-domain")
+
 # --- scale: any finite scale works as 1 does --------------------------------------------------------
 write("scale_1e-300.off", off(grid(1e-300)[0], T), 0, "")
 write("scale_1e+300.off", off(grid(1e300)[0], T), 0, "")

@@ -22,6 +22,7 @@
 #include <boost/graph/graph_traits.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -85,6 +86,41 @@ private:
   VertexCurvatureMap curvature_;
 };
 
+namespace internal {
+
+/// A face whose three corners lie on one hole's loop has them on that loop's circle, where
+/// the triangle lies inside the circle, in the hole and not in the domain: no layout of the
+/// condition has it unflipped. Such a face (an ear of the hole, or one across it) is refused
+/// by name before any solve; the outer loop's are inside the domain, as they should be.
+inline Border_target refuse_faces_inside_a_hole(const Mesh_index& index, Border_target t)
+{
+  std::vector<int> loop_of(index.number_of_vertices(), -1);
+  for(int l = 0; l < index.number_of_boundary_loops(); ++l)
+    for(int v : index.boundary_loops[l])
+      loop_of[v] = l;
+  int count = 0, first = -1;
+  for(int f = 0; f < index.number_of_faces(); ++f)
+  {
+    const std::array<int, 3>& c = index.faces[f];
+    const int l = loop_of[c[0]];
+    if(l >= 0 && l != t.outer_loop && loop_of[c[1]] == l && loop_of[c[2]] == l)
+    {
+      first = first < 0 ? f : first;
+      ++count;
+    }
+  }
+  if(count == 0)
+    return t;
+  t.status = Status::failure(CGAL::Surface_mesh_parameterization::ERROR_NO_1_TO_1_MAPPING,
+                             std::to_string(count) + " face(s) have all three corners on one hole's border (the first "
+                             "is face " + std::to_string(first) + ", on border loop " +
+                             std::to_string(loop_of[index.faces[first][0]]) + "): on that loop's circle they "
+                             "would lie inside the hole, flipped; split them, or choose another border condition");
+  return t;
+}
+
+} // namespace internal
+
 /// \brief A genus-0 mesh with any number of border loops, mapped without a cut onto a circle
 /// domain (paper Fig. 8): the outer loop a circle with the domain inside, every other loop a
 /// circle with the domain outside, the interior flat.
@@ -127,7 +163,7 @@ public:
       if(t.outer_loop < 0)
         return internal::refused("the border halfedge given is not on a border loop of its component");
     }
-    return t;
+    return internal::refuse_faces_inside_a_hole(index, std::move(t));
   }
 
 private:

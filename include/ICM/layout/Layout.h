@@ -106,8 +106,10 @@ inline void place_corner(const std::array<int, 3>& w, int c, double l_ac, double
   const Uv &a = z[w[(c + 1) % 3]], &b = z[w[(c + 2) % 3]];
   const double dx = b[0] - a[0], dy = b[1] - a[1];
   const double scale = l_ac / std::hypot(dx, dy);
-  const double cs = std::cos(theta_a) * scale, sn = std::sin(theta_a) * scale;
-  z[w[c]] = {a[0] + cs * dx - sn * dy, a[1] + sn * dx + cs * dy};
+  const double cs = std::cos(theta_a), sn = std::sin(theta_a);
+  // Rotated, then scaled: the order the energies' reverse mode differentiates (Energy_state.h).
+  const double rx = cs * dx - sn * dy, ry = sn * dx + cs * dy;
+  z[w[c]] = {a[0] + scale * rx, a[1] + scale * ry};
 }
 
 /// Unfolds faces given by their corners (`corners[f]`: ids of points of `z`, vertices or the
