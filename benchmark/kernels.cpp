@@ -42,12 +42,10 @@ const Fixture& fixture(int levels)
     Mesh mesh;
     CGAL::IO::read_polygon_mesh(ICM_BENCHMARK_MESH, mesh);
     if(levels > 0)
-      CGAL::Subdivision_method_3::Loop_subdivision(
-        mesh, CGAL::parameters::number_of_iterations(levels));
+      CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(levels));
     slot = std::make_unique<Fixture>();
     std::vector<Mesh::Vertex_index> vertices;
-    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh),
-                              slot->index, vertices);
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), slot->index, vertices);
     slot->metric = ICM::initial_circle_packing_metric(slot->index);
     for(char b : slot->index.is_boundary_vertex)
       slot->interior.push_back(!b);
@@ -160,7 +158,9 @@ BENCHMARK(BM_laplacian_assembly)->DenseRange(0, 3)->Unit(benchmark::kMillisecond
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Simplicial_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 #ifdef ICM_HAS_CHOLMOD
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Cholmod_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Nested_dissection_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Nested_dissection_solver)
+  ->DenseRange(0, 4)
+  ->Unit(benchmark::kMillisecond);
 #endif
 BENCHMARK(BM_newton_step)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_free_boundary_optimum)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

@@ -58,11 +58,11 @@
 #include <vector>
 
 #ifndef _WIN32
-#  include <unistd.h>
+#include <unistd.h>
 #endif
 
 #ifndef ICM_VERSION
-#  define ICM_VERSION "unknown"
+#define ICM_VERSION "unknown"
 #endif
 
 namespace {
@@ -158,8 +158,8 @@ bool parse_cone(const std::string& v, std::pair<int, double>& cone)
   char *end_vertex = nullptr, *end_angle = nullptr;
   const long vertex = std::strtol(v.c_str(), &end_vertex, 10);
   const double degrees = std::strtod(v.c_str() + colon + 1, &end_angle);
-  if(end_vertex != v.c_str() + colon || colon == 0 || vertex < 0 || vertex > 2147483647L ||
-     *end_angle != '\0' || !(degrees > 0) || !std::isfinite(degrees))
+  if(end_vertex != v.c_str() + colon || colon == 0 || vertex < 0 || vertex > 2147483647L || *end_angle != '\0' ||
+     !(degrees > 0) || !std::isfinite(degrees))
     return false;
   cone = {static_cast<int>(vertex), degrees};
   return true;
@@ -187,17 +187,26 @@ int usage_error(const std::string& reason, const Failure_report& fail)
 /// What --energy takes: the entropy, then the energies minimised from it (icm_param_energy.h).
 std::vector<std::string> energy_names()
 {
-  return {ICM::Curvature_entropy::name, ICM::U_square::name, ICM::Area_distortion::name,
-          ICM::Angle_distortion::name, ICM::Log_area_distortion::name};
+  return {ICM::Curvature_entropy::name, ICM::U_square::name, ICM::Area_distortion::name, ICM::Angle_distortion::name,
+          ICM::Log_area_distortion::name};
 }
 
-bool optimizes_energy(const Arguments& args) { return args.energy != ICM::Curvature_entropy::name; }
+bool optimizes_energy(const Arguments& args)
+{
+  return args.energy != ICM::Curvature_entropy::name;
+}
 
 /// What --boundary takes: the free border (default), a CGAL border parameterizer's circle or
 /// square, the circle domain of a surface with several border loops (doc/border_conditions.md).
-std::vector<std::string> boundary_names() { return {"free", "circle", "square", "circle-domain"}; }
+std::vector<std::string> boundary_names()
+{
+  return {"free", "circle", "square", "circle-domain"};
+}
 
-bool prescribes_border(const Arguments& args) { return args.boundary != "free"; }
+bool prescribes_border(const Arguments& args)
+{
+  return args.boundary != "free";
+}
 
 /// Why the options cannot go with the energy or the border condition, or empty: a prescribed
 /// border leaves no choice to an energy, and is solved on a disk without cones or seams.
@@ -208,7 +217,7 @@ std::string energy_conflict(const Arguments& args)
   if(optimizes_energy(args))
     return "--energy " + args.energy + " cannot go with --boundary " + args.boundary +
            ": a prescribed border leaves one conformal map, nothing for an energy to choose";
-  const char* option = !args.cones.empty() ? "--cone"
+  const char* option = !args.cones.empty()   ? "--cone"
                        : !args.seams.empty() ? "--seams"
                        : args.cones_asked    ? "--cones"
                                              : nullptr;
@@ -242,14 +251,16 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->check(CLI::IsMember({ICM::Intrinsic_delaunay_metric::name, ICM::Vertex_scaling_metric::name,
                            ICM::Inversive_distance_metric::name, ICM::Circle_packing_metric::name}))
     ->type_name("NAME");
-  app.add_option("--energy", args.energy,
-                 "the energy minimised (default " + args.energy +
-                   "); any other is minimised from it over the same border and cones")
+  app
+    .add_option("--energy", args.energy,
+                "the energy minimised (default " + args.energy +
+                  "); any other is minimised from it over the same border and cones")
     ->check(CLI::IsMember(energy_names()))
     ->type_name("NAME");
-  app.add_option("--boundary", args.boundary,
-                 "the border condition (default free): circle or square (a disk's border on CGAL's "
-                 "arc-length circle or square), circle-domain (every border loop a circle, no cut; genus 0)")
+  app
+    .add_option("--boundary", args.boundary,
+                "the border condition (default free): circle or square (a disk's border on CGAL's "
+                "arc-length circle or square), circle-domain (every border loop a circle, no cut; genus 0)")
     ->check(CLI::IsMember(boundary_names()))
     ->type_name("NAME");
   app.add_option("--cones", cones_text, "automatic interior cones: 'auto' (default) or at most N, 0 for none")
@@ -258,9 +269,12 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.add_option("--cone", cone_texts, "a cone of DEGREES at the input's VERTEX (repeatable)")
     ->check(cone_validator())
     ->type_name("VERTEX:DEGREES");
-  app.add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
+  app
+    .add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
     ->type_name("FILE");
-  app.add_flag("--keep-overlaps", args.keep_overlaps, "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one chart is not cut, write a map that does rather than fail");
+  app.add_flag("--keep-overlaps", args.keep_overlaps,
+               "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one "
+               "chart is not cut, write a map that does rather than fail");
   app.add_flag("--triangulate", args.triangulate, "triangulate polygons (otherwise they are refused)");
   app.add_flag("-q,--quiet", args.quiet, "no progress line on stderr for large meshes");
   try
@@ -349,9 +363,8 @@ std::vector<std::vector<Mesh::Vertex_index>> vertices_by_file_index(const Mesh& 
 }
 
 /// The user's cones as curvatures at vertices of the mesh; empty `error` on success.
-std::map<Mesh::Vertex_index, double> user_cones(const Arguments& args,
-                                                const std::vector<std::vector<Mesh::Vertex_index>>& by_index,
-                                                std::string& error)
+std::map<Mesh::Vertex_index, double>
+user_cones(const Arguments& args, const std::vector<std::vector<Mesh::Vertex_index>>& by_index, std::string& error)
 {
   std::map<Mesh::Vertex_index, double> cones;
   for(const auto& [vertex, degrees] : args.cones)
@@ -472,12 +485,11 @@ struct Run_figures
   explicit Run_figures(const ICM::Parameterization_report& report)
     : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
       overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
-      curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error),
-      metrics(report.metric), fallbacks(report.fallback_reason), layout(report.layout),
-      seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
-      seconds_parameterize(report.seconds_total), boundary(report.border_condition),
-      degenerate_faces(report.degenerate_faces), border_iterations(report.border_iterations),
-      circle_deviation(report.circle_deviation)
+      curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error), metrics(report.metric),
+      fallbacks(report.fallback_reason), layout(report.layout), seconds_optimum(report.seconds_optimum),
+      seconds_layout(report.seconds_layout), seconds_parameterize(report.seconds_total),
+      boundary(report.border_condition), degenerate_faces(report.degenerate_faces),
+      border_iterations(report.border_iterations), circle_deviation(report.circle_deviation)
   {}
 };
 
@@ -486,7 +498,10 @@ struct Timings
   double read = 0, write = 0, total = 0;
 };
 
-Json optional_count(const std::optional<int>& n) { return n ? Json(*n) : Json(); }
+Json optional_count(const std::optional<int>& n)
+{
+  return n ? Json(*n) : Json();
+}
 
 Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_reading_report& read,
                   const Run_figures& t, const ICM::Distortion_measures& measures, const Timings& seconds)
@@ -551,23 +566,22 @@ void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figur
                         const ICM::Distortion_measures& measures)
 {
   std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
-            << t.components << " chart(s), " << t.cones << " cones, " << t.seam_edges << " seam edges, "
-            << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", ";
+            << t.components << " chart(s), " << t.cones << " cones, " << t.seam_edges << " seam edges, " << t.newton
+            << " Newton iterations, max |k| " << t.curvature_error << ", ";
   if(t.optimized_energy)
-    std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in "
-              << t.energy_iterations << " steps, ";
-  std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion
-            << ", " << t.seconds_parameterize << " s -> " << args.output << "\n";
+    std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in " << t.energy_iterations
+              << " steps, ";
+  std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
+            << t.seconds_parameterize << " s -> " << args.output << "\n";
 }
 
 // --- the run ---------------------------------------------------------------------------
 
 template <class Metric>
-ICM::Surface_parameterization_report run_metric(const Mesh& mesh, Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2> uv,
-                                                const ICM::Surface_parameterization_options& options,
-                                                const std::map<Mesh::Vertex_index, double>& cones,
-                                                std::vector<Mesh::Edge_index>& seams,
-                                                const std::vector<Mesh::Edge_index>& user_seams)
+ICM::Surface_parameterization_report
+run_metric(const Mesh& mesh, Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2> uv,
+           const ICM::Surface_parameterization_options& options, const std::map<Mesh::Vertex_index, double>& cones,
+           std::vector<Mesh::Edge_index>& seams, const std::vector<Mesh::Edge_index>& user_seams)
 {
   return ICM::parameterize<Metric>(mesh, uv, options, cones, &seams, user_seams);
 }
@@ -585,8 +599,8 @@ std::string why_not_a_disk(Mesh& mesh, bool several_loops = false)
   std::vector<Mesh::Halfedge_index> cycles;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
   const long loops = static_cast<long>(cycles.size());
-  const long euler = static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) +
-                     static_cast<long>(num_faces(mesh));
+  const long euler =
+    static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) + static_cast<long>(num_faces(mesh));
   const long genus = (2 - loops - euler) / 2;
   if(genus == 0 && (loops == 1 || (several_loops && loops > 1)))
     return {};
@@ -612,12 +626,11 @@ std::string why_the_border_is_refused(const Arguments& args, Mesh& mesh)
 {
   const bool circle_domain = args.boundary == "circle-domain";
   const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
-  return not_a_disk.empty()
-           ? not_a_disk
-           : "--boundary " + args.boundary +
-               (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
-                              : " needs a disk (one component, one boundary loop, genus 0), and ") +
-               not_a_disk;
+  return not_a_disk.empty() ? not_a_disk
+                            : "--boundary " + args.boundary +
+                                (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
+                                               : " needs a disk (one component, one boundary loop, genus 0), and ") +
+                                not_a_disk;
 }
 
 /// Why the map of a prescribed border is not written, or empty: it folds over itself, and
@@ -693,9 +706,8 @@ int run(const Arguments& args, const Failure_report& fail)
   reading.triangulate = args.triangulate;
   ICM::IO::Mesh_reading_report read;
   if(!ICM::IO::read_triangle_mesh(args.input, mesh, read, reading))
-    return fail(read.message + (read.non_triangle_faces > 0 && !args.triangulate
-                                  ? " (--triangulate splits them)"
-                                  : ""));
+    return fail(read.message +
+                (read.non_triangle_faces > 0 && !args.triangulate ? " (--triangulate splits them)" : ""));
   seconds.read = since(t);
   // From here on a failure also says what was repaired: it may be why (a dropped vertex).
   std::string repairs;

@@ -8,8 +8,8 @@
 #include <ICM/border/Border_shape.h>
 
 namespace icm_param {
-template ICM::Parameterization_report parameterize_disk<ICM::Circular_border<Mesh>>(Mesh& mesh, const std::string& metric,
-                                                                                    Corner_uv_map uv);
+template ICM::Parameterization_report
+parameterize_disk<ICM::Circular_border<Mesh>>(Mesh& mesh, const std::string& metric, Corner_uv_map uv);
 template ICM::Parameterization_report parameterize_disk<ICM::Square_border<Mesh>>(Mesh& mesh, const std::string& metric,
                                                                                   Corner_uv_map uv);
 template ICM::Parameterization_report parameterize_disk<ICM::Circle_domain>(Mesh& mesh, const std::string& metric,

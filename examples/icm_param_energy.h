@@ -35,8 +35,7 @@ using Corner_uv_map = Mesh::Property_map<Mesh::Halfedge_index, Kernel::Point_2>;
 /// `ICM::parameterize` with `Energy` in the class of the metric named `metric`
 /// (`Metric::name`): the seams of every chart into `seams`.
 template <class Energy>
-ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, const std::string& metric,
-                                                          Corner_uv_map uv,
+ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, const std::string& metric, Corner_uv_map uv,
                                                           const ICM::Surface_parameterization_options& options,
                                                           const std::map<Mesh::Vertex_index, double>& cones,
                                                           std::vector<Mesh::Edge_index>& seams,

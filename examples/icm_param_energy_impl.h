@@ -18,8 +18,7 @@
 namespace icm_param {
 
 template <class Energy>
-ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, const std::string& metric,
-                                                          Corner_uv_map uv,
+ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, const std::string& metric, Corner_uv_map uv,
                                                           const ICM::Surface_parameterization_options& options,
                                                           const std::map<Mesh::Vertex_index, double>& cones,
                                                           std::vector<Mesh::Edge_index>& seams,

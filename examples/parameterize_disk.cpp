@@ -34,8 +34,7 @@ int main(int argc, char** argv)
     return 1;
   }
   std::cout << report.vertices << " vertices, " << report.newton_iterations
-            << " Newton iterations, max interior curvature " << report.max_curvature_error
-            << ", " << report.flipped_faces << " flipped faces, " << report.seconds_total
-            << " s\n";
+            << " Newton iterations, max interior curvature " << report.max_curvature_error << ", "
+            << report.flipped_faces << " flipped faces, " << report.seconds_total << " s\n";
   return 0;
 }

@@ -75,8 +75,8 @@ int main(int argc, char** argv)
     std::cerr << "no seam edge read from " << seams << "\n";
     return EXIT_FAILURE;
   }
-  std::cout << mesh.number_of_seam_edges() << " seam edges: " << num_vertices(polyhedron)
-            << " vertices, " << num_vertices(mesh) << " in the cut surface\n";
+  std::cout << mesh.number_of_seam_edges() << " seam edges: " << num_vertices(polyhedron) << " vertices, "
+            << num_vertices(mesh) << " in the cut surface\n";
 
   // A border halfedge of the cut surface: one side of a seam.
   const halfedge_descriptor bhd = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
@@ -91,10 +91,10 @@ int main(int argc, char** argv)
     return EXIT_FAILURE;
   }
   const ICM::Chart_report& chart = report.charts.front();
-  std::cout << input << ": " << chart.vertices << " vertices, " << chart.faces << " faces, "
-            << chart.cones.size() << " cones, " << chart.newton_iterations
-            << " Newton iterations, max curvature off the cones " << chart.max_curvature_error << ", metric "
-            << chart.metric << ", " << chart.flipped_faces << " flipped faces, " << report.seconds_total << " s\n";
+  std::cout << input << ": " << chart.vertices << " vertices, " << chart.faces << " faces, " << chart.cones.size()
+            << " cones, " << chart.newton_iterations << " Newton iterations, max curvature off the cones "
+            << chart.max_curvature_error << ", metric " << chart.metric << ", " << chart.flipped_faces
+            << " flipped faces, " << report.seconds_total << " s\n";
 
   std::ofstream out(output);
   SMP::IO::output_uvmap_to_off(mesh, bhd, uv_map, out);

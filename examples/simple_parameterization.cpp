@@ -67,9 +67,9 @@ int main(int argc, char** argv)
     return EXIT_FAILURE;
   }
   std::cout << input << ": " << report.vertices << " vertices, " << report.faces << " faces, "
-            << report.newton_iterations << " Newton iterations, max interior curvature "
-            << report.max_curvature_error << ", metric " << report.metric << ", "
-            << report.flipped_faces << " flipped faces, " << report.seconds_total << " s\n";
+            << report.newton_iterations << " Newton iterations, max interior curvature " << report.max_curvature_error
+            << ", metric " << report.metric << ", " << report.flipped_faces << " flipped faces, "
+            << report.seconds_total << " s\n";
 
   std::ofstream out(output);
   SMP::IO::output_uvmap_to_off(mesh, bhd, uv_map, out);

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages ICM needs, only those missing. Needs root (or sudo).
 set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
-          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev doxygen)
+          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev doxygen python3 clang-format)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -44,7 +44,8 @@ using halfedge_descriptor = Surface_mesh::Halfedge_index;
 namespace SMP = CGAL::Surface_mesh_parameterization;
 
 template <class Condition, class Energy = CGAL::Default>
-using Parameterizer = ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, Energy, Condition>;
+using Parameterizer =
+  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, Energy, Condition>;
 
 /// The mesh of `examples/data` or of the shared directory; false when the latter is absent.
 bool read_mesh(const std::string& name, Surface_mesh& mesh)
@@ -153,7 +154,8 @@ Circle_fit fit_circle(const std::vector<vertex_descriptor>& loop, const UvMap& u
   fit.centre = Point_2(mx - d[0] / 2, my - d[1] / 2);
   fit.radius = std::sqrt(d[0] * d[0] / 4 + d[1] * d[1] / 4 - d[2]);
   for(vertex_descriptor v : loop)
-    fit.deviation = std::max(fit.deviation, std::abs(std::sqrt(CGAL::squared_distance(get(uv, v), fit.centre)) - fit.radius) / fit.radius);
+    fit.deviation = std::max(
+      fit.deviation, std::abs(std::sqrt(CGAL::squared_distance(get(uv, v), fit.centre)) - fit.radius) / fit.radius);
   return fit;
 }
 
@@ -165,7 +167,7 @@ struct Outcome
 
 template <class P>
 Outcome parameterize(Surface_mesh& mesh, P parameterizer, Surface_mesh::Property_map<vertex_descriptor, Point_2> uv,
-                 halfedge_descriptor bhd = Surface_mesh::null_halfedge())
+                     halfedge_descriptor bhd = Surface_mesh::null_halfedge())
 {
   if(bhd == Surface_mesh::null_halfedge())
     bhd = some_border_halfedge(mesh);
@@ -173,14 +175,18 @@ Outcome parameterize(Surface_mesh& mesh, P parameterizer, Surface_mesh::Property
   return run;
 }
 
-auto add_uv_map(Surface_mesh& mesh) { return mesh.add_property_map<vertex_descriptor, Point_2>("v:uv").first; }
+auto add_uv_map(Surface_mesh& mesh)
+{
+  return mesh.add_property_map<vertex_descriptor, Point_2>("v:uv").first;
+}
 
 } // namespace
 
 TEST(BorderConditionMath, InscribedCircleOnBothBranches)
 {
   // A square of side sqrt(2) is inscribed in the unit circle.
-  const ICM::internal::Inscribed_circle square = ICM::internal::inscribed_circle({std::sqrt(2.0), std::sqrt(2.0), std::sqrt(2.0), std::sqrt(2.0)});
+  const ICM::internal::Inscribed_circle square =
+    ICM::internal::inscribed_circle({std::sqrt(2.0), std::sqrt(2.0), std::sqrt(2.0), std::sqrt(2.0)});
   ASSERT_TRUE(square.exists);
   EXPECT_NEAR(square.radius, 1.0, 1e-15);
   EXPECT_EQ(square.long_side, -1);
@@ -311,8 +317,8 @@ TEST(BorderConditionCircle, DiskBorderIsACircle)
     const Circle_fit fit = fit_circle(border_loops(mesh)[0], uv);
     EXPECT_LE(fit.deviation, 1e-8) << name;
     std::cout << name << " circle: deviation " << fit.deviation << ", " << run.report.border_iterations
-              << " outer iterations, " << run.report.newton_iterations << " Newton steps, "
-              << run.report.seconds_total << " s\n";
+              << " outer iterations, " << run.report.newton_iterations << " Newton steps, " << run.report.seconds_total
+              << " s\n";
   }
 }
 
@@ -335,7 +341,8 @@ TEST(BorderConditionPrescribed, RegularPolygonAnglesAreReproduced)
   }
   using Condition = ICM::Prescribed_border_curvature<decltype(k)>;
   auto uv = add_uv_map(mesh);
-  const Outcome run = parameterize(mesh, Parameterizer<Condition>(ICM::Parameterization_options(), {}, Condition(k)), uv);
+  const Outcome run =
+    parameterize(mesh, Parameterizer<Condition>(ICM::Parameterization_options(), {}, Condition(k)), uv);
   ASSERT_EQ(run.status, SMP::OK) << run.report.message;
   EXPECT_EQ(run.report.border_condition, "prescribed-curvature");
   EXPECT_EQ(negative_and_zero_faces(mesh, uv), std::make_pair(0, 0));
@@ -348,7 +355,8 @@ TEST(BorderConditionPrescribed, RegularPolygonAnglesAreReproduced)
 
   // One vertex turning a little more breaks Gauss-Bonnet: refused, with the sum.
   k[loop[0]] += 0.01;
-  const Outcome refused = parameterize(mesh, Parameterizer<Condition>(ICM::Parameterization_options(), {}, Condition(k)), uv);
+  const Outcome refused =
+    parameterize(mesh, Parameterizer<Condition>(ICM::Parameterization_options(), {}, Condition(k)), uv);
   EXPECT_EQ(refused.status, SMP::ERROR_WRONG_PARAMETER);
   EXPECT_NE(refused.report.message.find("Gauss-Bonnet"), std::string::npos) << refused.report.message;
 }
@@ -429,7 +437,8 @@ TEST(BorderConditionCircleDomain, OuterLoopOfTheGivenHalfedge)
   }
   auto uv = add_uv_map(mesh);
   const ICM::Circle_domain condition(ICM::Circle_domain::Outer_loop::Of_border_halfedge);
-  const Outcome run = parameterize(mesh, Parameterizer<ICM::Circle_domain>(ICM::Parameterization_options(), {}, condition), uv, shortest);
+  const Outcome run =
+    parameterize(mesh, Parameterizer<ICM::Circle_domain>(ICM::Parameterization_options(), {}, condition), uv, shortest);
   ASSERT_EQ(run.status, SMP::OK) << run.report.message;
   EXPECT_EQ(negative_and_zero_faces(mesh, uv), std::make_pair(0, 0));
   std::vector<vertex_descriptor> given;

@@ -128,10 +128,11 @@ TEST(CgalPorts, SimpleParameterizationWithASolverTraits)
   using Parameterizer = ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, Cholesky_traits>;
   static_assert(std::is_same<Parameterizer::Solver, Eigen::SimplicialLDLT<Eigen_matrix>>::value,
                 "a Cholesky traits gives its solver");
-  static_assert(std::is_same<ICM::Inverse_curvature_map_parameterizer_3<
-                               Surface_mesh, CGAL::Default, CGAL::Eigen_solver_traits<>>::Solver,
-                             ICM::Default_sparse_solver>::value,
-                "CGAL's default traits (BiCGSTAB) gives ICM's solver");
+  static_assert(
+    std::is_same<
+      ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Eigen_solver_traits<>>::Solver,
+      ICM::Default_sparse_solver>::value,
+    "CGAL's default traits (BiCGSTAB) gives ICM's solver");
   Parameterizer parameterizer;
   ASSERT_EQ(SMP::parameterize(sm, parameterizer, bhd, uv_map), SMP::OK) << parameterizer.report().message;
   EXPECT_EQ(parameterizer.report().border_condition, "free");

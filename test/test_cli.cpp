@@ -17,8 +17,8 @@
 #include <vector>
 
 #ifndef _WIN32
-#  include <sys/wait.h>
-#  include <unistd.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #endif
 
 namespace {
@@ -80,9 +80,8 @@ public:
   Result run(const std::string& arguments) const
   {
     const fs::path out = root_.path() / "stdout.txt", err = root_.path() / "stderr.txt";
-    const std::string command = "cd " + quote(work().string()) + " && " + quote(ICM_PARAM_EXE) +
-                                " " + arguments + " >" + quote(out.string()) + " 2>" +
-                                quote(err.string());
+    const std::string command = "cd " + quote(work().string()) + " && " + quote(ICM_PARAM_EXE) + " " + arguments +
+                                " >" + quote(out.string()) + " 2>" + quote(err.string());
     const int status = std::system(command.c_str());
     Result r;
 #ifdef _WIN32
@@ -132,8 +131,7 @@ std::string json_value(const std::string& json, const std::string& key)
 TEST(Cli, NefertitiWritesObjSvgAndJson)
 {
   Sandbox box;
-  const Sandbox::Result r =
-    box.run(quote(data_path("nefertiti.off")) + " -o out.obj --svg out.svg --json");
+  const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")) + " -o out.obj --svg out.svg --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << "stderr: " << r.err;
 
@@ -155,15 +153,14 @@ TEST(Cli, NefertitiWritesObjSvgAndJson)
   const std::string residual = json_value(json, "max_curvature_error");
   ASSERT_FALSE(residual.empty()) << json;
   EXPECT_LT(std::stod(residual), 1e-9);
-  for(const char* key : {"seconds_total", "seconds_read", "seconds_cones", "seconds_optimum",
-                         "seconds_cut", "seconds_layout", "seconds_parameterize", "seconds_write"})
+  for(const char* key : {"seconds_total", "seconds_read", "seconds_cones", "seconds_optimum", "seconds_cut",
+                         "seconds_layout", "seconds_parameterize", "seconds_write"})
   {
     const std::string v = json_value(json, key);
     ASSERT_FALSE(v.empty()) << key << " missing in " << json;
     EXPECT_GE(std::stod(v), 0.0) << key;
   }
-  EXPECT_GE(std::stod(json_value(json, "seconds_total")),
-            std::stod(json_value(json, "seconds_parameterize")));
+  EXPECT_GE(std::stod(json_value(json, "seconds_total")), std::stod(json_value(json, "seconds_parameterize")));
 
   EXPECT_EQ(box.listing(), (std::vector<std::string>{"out.obj", "out.svg"}));
   const std::vector<std::string> obj = lines_of(read_text(box.file("out.obj")));
@@ -251,8 +248,7 @@ TEST(Cli, UserSeamsFromASelectionFile)
   // A seam file that names a pair of vertices without an edge: refused, nothing written.
   Sandbox bad;
   write_text(bad.work() / "bad.selection.txt", "\n\n0 1 0 500\n");
-  const Sandbox::Result refused =
-    bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt");
+  const Sandbox::Result refused = bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt");
   expect_clean_failure(bad, refused, "line 3", {"bad.selection.txt"});
 }
 
@@ -339,8 +335,7 @@ TEST(Cli, ZeroAreaFace)
   Sandbox box;
   // A valid disk (one border loop, genus 0) whose third face has three collinear corners:
   // the reader refuses it, naming the face and its line.
-  write_text(box.file("flat.off"),
-             "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n");
+  write_text(box.file("flat.off"), "OFF\n4 3 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 1 2 3\n3 0 2 1\n");
   const Sandbox::Result r = box.run("flat.off -o out.obj");
   EXPECT_NE(r.exit_code, 128 + 6)
     << "CLI BUG: icm_param aborts (std::logic_error 'basic_string: construction from null') "
@@ -432,8 +427,7 @@ TEST(Cli, OutputsAreAllOrNothing)
     // An SVG that cannot be written: the user's previous OBJ stays as it was.
     Sandbox box;
     write_text(box.file("out.obj"), "previous\n");
-    expect_clean_failure(box, box.run(input + " -o out.obj --svg no_such_dir/out.svg"), "does not exist",
-                         {"out.obj"});
+    expect_clean_failure(box, box.run(input + " -o out.obj --svg no_such_dir/out.svg"), "does not exist", {"out.obj"});
     EXPECT_EQ(read_text(box.file("out.obj")), "previous\n");
     fs::create_directory(box.file("a_directory"));
     expect_clean_failure(box, box.run(input + " -o out.obj --svg a_directory"), "directory",
@@ -583,8 +577,8 @@ TEST(Cli, EveryEnergyRunsOnADisk)
   {
     SCOPED_TRACE(energy);
     const std::string obj = energy + ".obj", svg = energy + ".svg";
-    const std::string json =
-      json_line_of(box.run(quote(data_path("nefertiti.off")) + " -o " + obj + " --svg " + svg + " --json --energy " + energy));
+    const std::string json = json_line_of(
+      box.run(quote(data_path("nefertiti.off")) + " -o " + obj + " --svg " + svg + " --json --energy " + energy));
     EXPECT_EQ(json_value(json, "energy"), "\"" + energy + "\"");
     EXPECT_EQ(json_value(json, "energy_message"), "\"\"") << "the optimizer stopped early";
     EXPECT_GE(json_number(json, "energy_iterations"), 1);
@@ -629,8 +623,7 @@ TEST(Cli, BadEnergyIsAUsageError)
   Sandbox box;
   const Sandbox::Result r = box.run(quote(data_path("nefertiti.off")) + " -o out.obj --energy entropic");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--energy: entropic not in {entropy,u-square,area,angle,log-area}"), std::string::npos)
-    << r.err;
+  EXPECT_NE(r.err.find("--energy: entropic not in {entropy,u-square,area,angle,log-area}"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("usage:"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty()) << r.out;
   EXPECT_TRUE(box.listing().empty());
@@ -647,7 +640,8 @@ TEST(Cli, EnergyRunsOnEveryTopology)
     SCOPED_TRACE(name);
     const std::string input = quote(data_path(name));
     const std::string entropy = json_line_of(box.run(input + " -o entropy.obj --json"));
-    const std::string json = json_line_of(box.run(input + " -o log_area.obj --svg log_area.svg --json --energy log-area"));
+    const std::string json =
+      json_line_of(box.run(input + " -o log_area.obj --svg log_area.svg --json --energy log-area"));
     EXPECT_EQ(json_value(json, "energy"), "\"log-area\"");
     EXPECT_EQ(json_value(json, "cones"), json_value(entropy, "cones"));
     EXPECT_GT(json_number(json, "cones"), 0);
@@ -717,12 +711,14 @@ TEST(Cli, BoundaryConditionsRefuseWhatTheyCannotDo)
   Sandbox box;
   // A prescribed square needs a disk; a circle domain a genus-0 surface with a border.
   Sandbox::Result r = box.run(quote(data_path("pig.off")) + " -o out.obj --boundary square");
-  expect_clean_failure(box, r, "--boundary square needs a disk (one component, one boundary loop, genus 0), and it "
-                               "has genus 0 and 7 boundary loops");
+  expect_clean_failure(box, r,
+                       "--boundary square needs a disk (one component, one boundary loop, genus 0), and it "
+                       "has genus 0 and 7 boundary loops");
   EXPECT_EQ(r.exit_code, 1);
   r = box.run(quote(data_path("eight.off")) + " -o out.obj --boundary circle-domain");
-  expect_clean_failure(box, r, "--boundary circle-domain needs one component of genus 0 with at least one border "
-                               "loop, and it is closed, genus 2");
+  expect_clean_failure(box, r,
+                       "--boundary circle-domain needs one component of genus 0 with at least one border "
+                       "loop, and it is closed, genus 2");
   // A prescribed border leaves nothing for an energy to choose, and has no cones or seams.
   const std::string input = quote(data_path("nefertiti.off"));
   r = box.run(input + " -o out.obj --boundary circle --energy log-area");

@@ -26,11 +26,14 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using ICM::internal::Mesh_index;
 
-Mesh_index index_file(const std::string& name) { return icm_test::index_of(icm_test::data_path(name)); }
+Mesh_index index_file(const std::string& name)
+{
+  return icm_test::index_of(icm_test::data_path(name));
+}
 
-using icm_test::random_perturbation;
 using icm_test::equilateral_grid;
 using icm_test::interior_of;
+using icm_test::random_perturbation;
 
 } // namespace
 
@@ -166,9 +169,8 @@ TEST(InverseCurvatureMap, RefusesCurvatureThatViolatesGaussBonnet)
   const Mesh_index index = index_file("sphere966.off");
   const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
   Eigen::VectorXd u;
-  const ICM::Newton_report report = ICM::inverse_curvature_map(
-    index, metric, Eigen::VectorXd::Zero(index.number_of_vertices()), u);
+  const ICM::Newton_report report =
+    ICM::inverse_curvature_map(index, metric, Eigen::VectorXd::Zero(index.number_of_vertices()), u);
   EXPECT_FALSE(report.converged);
   EXPECT_NE(report.message.find("Gauss-Bonnet"), std::string::npos) << report.message;
 }
-

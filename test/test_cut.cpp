@@ -46,8 +46,8 @@ bool index_shared(const std::string& name, Mesh_index& index)
   return status.ok();
 }
 
-#define ICM_INDEX_SHARED_OR_SKIP(name, index)                                                      \
-  if(!index_shared(name, index))                                                                   \
+#define ICM_INDEX_SHARED_OR_SKIP(name, index)                                                                          \
+  if(!index_shared(name, index))                                                                                       \
   GTEST_SKIP() << icm_test::shared_path(name) << " is missing"
 
 Mesh_index make_index(std::vector<std::array<double, 3>> points, std::vector<std::array<int, 3>> faces)
@@ -136,7 +136,10 @@ std::vector<char> far_apart_cones(const Mesh_index& index, int count)
   return is_cone;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
 
 // --- the properties every cut must have ---------------------------------------------------
 
@@ -286,7 +289,7 @@ std::vector<double> graph_distances(const Mesh_index& index, int source)
   std::vector<double> distance;
   std::vector<int> parent_edge, label;
   ICM::internal::cutting::shortest_path_forest(ICM::internal::cutting::make_surface_graph(index),
-                                      {static_cast<std::size_t>(source)}, distance, parent_edge, label);
+                                               {static_cast<std::size_t>(source)}, distance, parent_edge, label);
   return distance;
 }
 
@@ -315,7 +318,7 @@ TEST(CutGraph, OctahedronThreeAndSixConesGiveTrees)
   const auto three = expect_disk_cut(index, cones_at(index, {0, 2, 4}));
   EXPECT_EQ(three.number_of_seam_edges, 2);
   const auto six = expect_disk_cut(index, cones_at(index, {0, 1, 2, 3, 4, 5}));
-  EXPECT_EQ(six.number_of_seam_edges, 5);  // a spanning tree
+  EXPECT_EQ(six.number_of_seam_edges, 5); // a spanning tree
   EXPECT_NEAR(six.seam_length, 5 * std::sqrt(2.0), 1e-12);
 }
 
@@ -444,7 +447,7 @@ TEST(CutGraph, Sphere966FourConesAreJoinedByAShortTree)
       farthest = std::max(farthest, distance[w]);
     }
   }
-  double mst = 0;  // Prim on 4 points
+  double mst = 0; // Prim on 4 points
   std::vector<char> in(cones.size(), 0);
   std::vector<double> best(cones.size(), std::numeric_limits<double>::max());
   best[0] = 0;
@@ -492,15 +495,42 @@ void expect_shared_disk_cut(const std::string& name, int genus, int loops)
   }
 }
 
-TEST(CutGraph, RotorTorusGetsTwoGenerators) { expect_shared_disk_cut("rotor.off", 1, 0); }
-TEST(CutGraph, ElkTorusGetsTwoGenerators) { expect_shared_disk_cut("elk.off", 1, 0); }
-TEST(CutGraph, KnottedTorusGetsTwoGenerators) { expect_shared_disk_cut("knot1.off", 1, 0); }
-TEST(CutGraph, EightGenusTwoGetsFourGenerators) { expect_shared_disk_cut("eight.off", 2, 0); }
-TEST(CutGraph, FemurGenusTwoGetsFourGenerators) { expect_shared_disk_cut("femur.off", 2, 0); }
-TEST(CutGraph, ElephantGenusThreeGetsSixGenerators) { expect_shared_disk_cut("elephant.off", 3, 0); }
-TEST(CutGraph, PigSevenBoundaryLoopsAreJoined) { expect_shared_disk_cut("pig.off", 0, 7); }
-TEST(CutGraph, HeadThreeBoundaryLoopsAreJoined) { expect_shared_disk_cut("head.off", 0, 3); }
-TEST(CutGraph, SharkFourBoundaryLoopsAreJoined) { expect_shared_disk_cut("mech-holes-shark.off", 0, 4); }
+TEST(CutGraph, RotorTorusGetsTwoGenerators)
+{
+  expect_shared_disk_cut("rotor.off", 1, 0);
+}
+TEST(CutGraph, ElkTorusGetsTwoGenerators)
+{
+  expect_shared_disk_cut("elk.off", 1, 0);
+}
+TEST(CutGraph, KnottedTorusGetsTwoGenerators)
+{
+  expect_shared_disk_cut("knot1.off", 1, 0);
+}
+TEST(CutGraph, EightGenusTwoGetsFourGenerators)
+{
+  expect_shared_disk_cut("eight.off", 2, 0);
+}
+TEST(CutGraph, FemurGenusTwoGetsFourGenerators)
+{
+  expect_shared_disk_cut("femur.off", 2, 0);
+}
+TEST(CutGraph, ElephantGenusThreeGetsSixGenerators)
+{
+  expect_shared_disk_cut("elephant.off", 3, 0);
+}
+TEST(CutGraph, PigSevenBoundaryLoopsAreJoined)
+{
+  expect_shared_disk_cut("pig.off", 0, 7);
+}
+TEST(CutGraph, HeadThreeBoundaryLoopsAreJoined)
+{
+  expect_shared_disk_cut("head.off", 0, 3);
+}
+TEST(CutGraph, SharkFourBoundaryLoopsAreJoined)
+{
+  expect_shared_disk_cut("mech-holes-shark.off", 0, 4);
+}
 
 TEST(CutGraph, EightWithConesAddsATreeToTheGenerators)
 {
@@ -640,7 +670,7 @@ TEST(CutMesh, SlitThroughTheMiddleOfADiskIsRefusedButAPathToTheBorderIsNot)
 TEST(CutMesh, OctahedronCutHasTheWedgesOfItsSeams)
 {
   const Mesh_index index = octahedron();
-  const auto is_seam = seams_along(index, {4, 0, 5, 1});  // ends 4 and 1 interior, 0 and 5 inner
+  const auto is_seam = seams_along(index, {4, 0, 5, 1}); // ends 4 and 1 interior, 0 and 5 inner
   const ICM::Cut_mesh cut = ICM::cut_mesh(index, is_seam);
   ASSERT_TRUE(cut.ok()) << cut.status.message;
   // Ends keep one wedge, the two inner path vertices get two: 6 + 2.

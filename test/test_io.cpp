@@ -35,9 +35,9 @@
 #include <vector>
 
 #ifndef _WIN32
-#  include <csignal>
-#  include <sys/wait.h>
-#  include <unistd.h>
+#include <csignal>
+#include <sys/wait.h>
+#include <unistd.h>
 #endif
 
 namespace {
@@ -56,8 +56,7 @@ using Temp_dir = icm_test::Scratch_directory;
 std::size_t count_occurrences(const std::string& text, const std::string& what)
 {
   std::size_t n = 0;
-  for(std::size_t pos = text.find(what); pos != std::string::npos;
-      pos = text.find(what, pos + what.size()))
+  for(std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + what.size()))
     ++n;
   return n;
 }
@@ -71,12 +70,14 @@ std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor> build_grid(Me
   auto vpm = get(CGAL::vertex_point, mesh);
   std::vector<vertex_descriptor> v;
   for(int j = 0; j < 3; ++j)
-    for(int i = 0; i < 3; ++i) {
+    for(int i = 0; i < 3; ++i)
+    {
       v.push_back(add_vertex(mesh));
       put(vpm, v.back(), Point_3(i, j, 0));
     }
   for(int j = 0; j < 2; ++j)
-    for(int i = 0; i < 2; ++i) {
+    for(int i = 0; i < 2; ++i)
+    {
       const int a = j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
       const std::vector<vertex_descriptor> t1{v[a], v[b], v[c]}, t2{v[a], v[c], v[d]};
       EXPECT_NE(CGAL::Euler::add_face(t1, mesh), boost::graph_traits<Mesh>::null_face());
@@ -87,11 +88,11 @@ std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor> build_grid(Me
 
 // A UV map with uv = (x, y) of the vertex, for any FaceGraph.
 template <class Mesh>
-std::unordered_map<typename boost::graph_traits<Mesh>::vertex_descriptor, Point_2>
-xy_uvs(const Mesh& mesh)
+std::unordered_map<typename boost::graph_traits<Mesh>::vertex_descriptor, Point_2> xy_uvs(const Mesh& mesh)
 {
   std::unordered_map<typename boost::graph_traits<Mesh>::vertex_descriptor, Point_2> uv;
-  for(auto v : vertices(mesh)) {
+  for(auto v : vertices(mesh))
+  {
     const Point_3& p = get(CGAL::vertex_point, mesh, v);
     uv[v] = Point_2(p.x(), p.y());
   }
@@ -102,7 +103,8 @@ xy_uvs(const Mesh& mesh)
 void expect_uv_is_xy(const ICM::IO::Uv_mesh& m)
 {
   for(std::size_t f = 0; f < m.number_of_faces(); ++f)
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const auto& p = m.positions.at(m.face_positions[f][k]);
       const auto& t = m.uvs.at(m.face_uvs[f][k]);
       EXPECT_EQ(p[0], t[0]);
@@ -112,14 +114,14 @@ void expect_uv_is_xy(const ICM::IO::Uv_mesh& m)
 }
 
 // Each face's corners, as a set of (x, y) integer positions, for order-independent comparison.
-std::multiset<std::vector<std::pair<int, int> > > face_corner_sets(const ICM::IO::Uv_mesh& m)
+std::multiset<std::vector<std::pair<int, int>>> face_corner_sets(const ICM::IO::Uv_mesh& m)
 {
-  std::multiset<std::vector<std::pair<int, int> > > out;
-  for(const auto& f : m.face_positions) {
-    std::vector<std::pair<int, int> > c;
+  std::multiset<std::vector<std::pair<int, int>>> out;
+  for(const auto& f : m.face_positions)
+  {
+    std::vector<std::pair<int, int>> c;
     for(int k = 0; k < 3; ++k)
-      c.emplace_back(static_cast<int>(m.positions[f[k]][0]),
-                     static_cast<int>(m.positions[f[k]][1]));
+      c.emplace_back(static_cast<int>(m.positions[f[k]][0]), static_cast<int>(m.positions[f[k]][1]));
     // Rotate so the smallest corner comes first: keeps the orientation, drops the start.
     std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
     out.insert(c);
@@ -128,11 +130,12 @@ std::multiset<std::vector<std::pair<int, int> > > face_corner_sets(const ICM::IO
 }
 
 // The expected faces of build_grid(), in the same normal form as face_corner_sets().
-std::multiset<std::vector<std::pair<int, int> > > grid_corner_sets()
+std::multiset<std::vector<std::pair<int, int>>> grid_corner_sets()
 {
-  std::multiset<std::vector<std::pair<int, int> > > out;
+  std::multiset<std::vector<std::pair<int, int>>> out;
   for(int j = 0; j < 2; ++j)
-    for(int i = 0; i < 2; ++i) {
+    for(int i = 0; i < 2; ++i)
+    {
       out.insert({{i, j}, {i + 1, j}, {i + 1, j + 1}});
       out.insert({{i, j}, {i + 1, j + 1}, {i, j + 1}});
     }
@@ -152,9 +155,8 @@ using Seam_vertex_descriptor = boost::graph_traits<Seam_mesh>::vertex_descriptor
 // in CGAL's Surface_mesh_parameterization examples. Not copyable: the seam mesh refers to sm.
 struct Cut_grid
 {
-  explicit Cut_grid(std::initializer_list<std::pair<int, int> > seams)
-    : v(build_grid(sm)),
-      seam_edges(sm.add_property_map<SM_edge_descriptor, bool>("e:on_seam", false).first),
+  explicit Cut_grid(std::initializer_list<std::pair<int, int>> seams)
+    : v(build_grid(sm)), seam_edges(sm.add_property_map<SM_edge_descriptor, bool>("e:on_seam", false).first),
       seam_vertices(sm.add_property_map<SM_vertex_descriptor, bool>("v:on_seam", false).first),
       mesh(sm, seam_edges, seam_vertices)
   {
@@ -177,14 +179,17 @@ struct Cut_grid
 std::map<Seam_vertex_descriptor, Point_2> split_uvs(const Seam_mesh& mesh, const Surface_mesh& sm)
 {
   std::map<Seam_vertex_descriptor, Point_2> uv;
-  for(Seam_vertex_descriptor v : vertices(mesh)) {
+  for(Seam_vertex_descriptor v : vertices(mesh))
+  {
     const Point_3& p = sm.point(target(SM_halfedge_descriptor(halfedge(v, mesh)), sm));
     double cx = 0.;
     int n = 0;
-    for(auto h : CGAL::halfedges_around_target(halfedge(v, mesh), mesh)) {
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, mesh), mesh))
+    {
       if(is_border(h, mesh))
         continue;
-      for(auto g : CGAL::halfedges_around_face(h, mesh)) {
+      for(auto g : CGAL::halfedges_around_face(h, mesh))
+      {
         cx += sm.point(target(SM_halfedge_descriptor(g), sm)).x();
         ++n;
       }
@@ -198,7 +203,7 @@ std::map<Seam_vertex_descriptor, Point_2> split_uvs(const Seam_mesh& mesh, const
 // How many different UV indices the faces use for each position.
 std::vector<std::size_t> uvs_per_position(const ICM::IO::Uv_mesh& m)
 {
-  std::vector<std::set<int> > s(m.positions.size());
+  std::vector<std::set<int>> s(m.positions.size());
   for(std::size_t f = 0; f < m.number_of_faces(); ++f)
     for(int k = 0; k < 3; ++k)
       s.at(m.face_positions[f][k]).insert(m.face_uvs[f][k]);
@@ -213,7 +218,8 @@ std::vector<std::size_t> uvs_per_position(const ICM::IO::Uv_mesh& m)
 ICM::IO::Uv_mesh separate_triangles(int n)
 {
   ICM::IO::Uv_mesh m;
-  for(int f = 0; f < n; ++f) {
+  for(int f = 0; f < n; ++f)
+  {
     const double x = 2. * f;
     const int b = static_cast<int>(m.positions.size());
     m.positions.push_back({{x, 0., 0.}});
@@ -305,7 +311,8 @@ TEST(IoUvMesh, SurfaceMeshFollowsVertexOrder)
   std::string error;
   EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
   // Vertices were created in grid order, so position i is vertex i.
-  for(int i = 0; i < 9; ++i) {
+  for(int i = 0; i < 9; ++i)
+  {
     EXPECT_EQ(m.positions[i][0], i % 3);
     EXPECT_EQ(m.positions[i][1], i / 3);
   }
@@ -366,8 +373,8 @@ TEST(IoUvMesh, SeamMeshSplitsSeamVertices)
   const auto uv = split_uvs(mesh, sm);
   const ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(mesh, boost::make_assoc_property_map(uv));
 
-  ASSERT_EQ(m.positions.size(), 9u);  // one per real vertex
-  ASSERT_EQ(m.uvs.size(), 12u);       // one per seam mesh vertex
+  ASSERT_EQ(m.positions.size(), 9u); // one per real vertex
+  ASSERT_EQ(m.uvs.size(), 12u);      // one per seam mesh vertex
   ASSERT_EQ(m.number_of_faces(), 8u);
   std::string error;
   EXPECT_TRUE(ICM::IO::is_valid_uv_mesh(m, error)) << error;
@@ -384,12 +391,14 @@ TEST(IoUvMesh, SeamMeshSplitsSeamVertices)
     EXPECT_EQ(n[i], (i % 3 == 1) ? 2u : 1u) << "vertex " << i;
 
   // Every corner uses the copy on its face's side of the cut.
-  for(std::size_t f = 0; f < m.number_of_faces(); ++f) {
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+  {
     double cx = 0.;
     for(int k = 0; k < 3; ++k)
       cx += m.positions[m.face_positions[f][k]][0] / 3.;
     const double shift = cx < 1. ? -0.1 : 0.1;
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const auto& p = m.positions[m.face_positions[f][k]];
       const auto& t = m.uvs[m.face_uvs[f][k]];
       EXPECT_DOUBLE_EQ(t[0], p[0] + shift) << "face " << f << " corner " << k;
@@ -429,9 +438,9 @@ TEST(IoUvMesh, SeamMeshSlitTipHasOneUv)
 
 struct Parsed_obj
 {
-  std::vector<std::array<double, 3> > v;
-  std::vector<std::array<double, 2> > vt;
-  std::vector<std::array<int, 3> > fv, ft;
+  std::vector<std::array<double, 3>> v;
+  std::vector<std::array<double, 2>> vt;
+  std::vector<std::array<int, 3>> fv, ft;
 };
 
 // A small parser for what write_uv_obj emits (CGAL's OBJ reader drops `vt`).
@@ -441,28 +450,35 @@ Parsed_obj parse_obj(const std::string& path)
   std::ifstream in(path);
   in.imbue(std::locale::classic());
   std::string line;
-  while(std::getline(in, line)) {
+  while(std::getline(in, line))
+  {
     std::istringstream s(line);
     s.imbue(std::locale::classic());
     std::string tag;
     s >> tag;
-    if(tag == "v") {
+    if(tag == "v")
+    {
       std::array<double, 3> p;
       s >> p[0] >> p[1] >> p[2];
       EXPECT_TRUE(static_cast<bool>(s)) << line;
       obj.v.push_back(p);
-    } else if(tag == "vt") {
+    }
+    else if(tag == "vt")
+    {
       std::array<double, 2> t;
       s >> t[0] >> t[1];
       EXPECT_TRUE(static_cast<bool>(s)) << line;
       obj.vt.push_back(t);
-    } else if(tag == "f") {
+    }
+    else if(tag == "f")
+    {
       std::array<int, 3> a, b;
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         char slash = 0;
         s >> a[k] >> slash >> b[k];
         EXPECT_EQ(slash, '/') << line;
-        --a[k];  // back to 0-based
+        --a[k]; // back to 0-based
         --b[k];
       }
       EXPECT_TRUE(static_cast<bool>(s)) << line;
@@ -470,7 +486,9 @@ Parsed_obj parse_obj(const std::string& path)
       EXPECT_FALSE(s >> rest) << "more than 3 corners: " << line;
       obj.fv.push_back(a);
       obj.ft.push_back(b);
-    } else {
+    }
+    else
+    {
       EXPECT_TRUE(tag.empty() || tag[0] == '#') << "unexpected line: " << line;
     }
   }
@@ -479,8 +497,7 @@ Parsed_obj parse_obj(const std::string& path)
 
 void expect_close(double expected, double actual)
 {
-  EXPECT_LE(std::abs(expected - actual), 1e-15 * std::abs(expected))
-      << expected << " vs " << actual;
+  EXPECT_LE(std::abs(expected - actual), 1e-15 * std::abs(expected)) << expected << " vs " << actual;
 }
 
 TEST(IoObj, RoundTripKeepsEveryDigitAndSeams)
@@ -490,16 +507,18 @@ TEST(IoObj, RoundTripKeepsEveryDigitAndSeams)
   ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(grid.mesh, boost::make_assoc_property_map(uv));
 
   // Numbers that a short format would round.
-  const double awkward[] = {0.1,       1. / 3.,      -2.5e17, 1e-300, 3.141592653589793,
-                            -7.0000000000000009, 6.02214076e23, 4.9406564584124654e-314};
+  const double awkward[] = {
+    0.1, 1. / 3., -2.5e17, 1e-300, 3.141592653589793, -7.0000000000000009, 6.02214076e23, 4.9406564584124654e-314};
   int k = 0;
   for(auto& p : m.positions)
-    for(double& x : p) {
+    for(double& x : p)
+    {
       x = awkward[k % 8] * (1 + k);
       ++k;
     }
   for(auto& t : m.uvs)
-    for(double& x : t) {
+    for(double& x : t)
+    {
       x = -awkward[k % 8] / (1 + k);
       ++k;
     }
@@ -509,7 +528,7 @@ TEST(IoObj, RoundTripKeepsEveryDigitAndSeams)
   std::string error;
   ASSERT_TRUE(ICM::IO::write_uv_obj(path, m, error)) << error;
   EXPECT_TRUE(error.empty());
-  EXPECT_EQ(dir.number_of_entries(), 1u);  // no temporary file left
+  EXPECT_EQ(dir.number_of_entries(), 1u); // no temporary file left
 
   const Parsed_obj obj = parse_obj(path);
   ASSERT_EQ(obj.v.size(), m.positions.size());
@@ -537,7 +556,7 @@ TEST(IoObj, StreamOverloadText)
   EXPECT_NE(text.find("\nv 1 0 0\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nvt 0.5 0.25\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nf 1/1 2/2 3/3\n"), std::string::npos) << text;
-  EXPECT_EQ(s.precision(), 6);  // the stream is left as it was
+  EXPECT_EQ(s.precision(), 6); // the stream is left as it was
 }
 
 TEST(IoObj, MissingDirectoryFailsAndCreatesNothing)
@@ -582,7 +601,7 @@ TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
   EXPECT_NE(error.find("UV 2 is not finite: the layout, scaled back to the mesh's extent (1.5e+308), is beyond the "
                        "range of a double (scale the mesh down)"),
             std::string::npos)
-      << error;
+    << error;
 
   EXPECT_EQ(read_text(path), "original\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -599,24 +618,24 @@ TEST(IoAtomicFile, FailingBodyKeepsOriginalAndLeavesNoTemporary)
 
   std::string error;
   EXPECT_FALSE(ICM::internal::write_file_atomically(
-      path,
-      [](std::ostream& os) {
-        os << "half written garbage";
-        return false;
-      },
-      error));
+    path,
+    [](std::ostream& os) {
+      os << "half written garbage";
+      return false;
+    },
+    error));
   EXPECT_NE(error.find("cannot write '" + path + "'"), std::string::npos) << error;
   EXPECT_EQ(read_text(path), "precious content\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
 
   error.clear();
   EXPECT_FALSE(ICM::internal::write_file_atomically(
-      path,
-      [](std::ostream& os) -> bool {
-        os << "garbage";
-        throw std::runtime_error("boom");
-      },
-      error));
+    path,
+    [](std::ostream& os) -> bool {
+      os << "garbage";
+      throw std::runtime_error("boom");
+    },
+    error));
   EXPECT_NE(error.find("boom"), std::string::npos) << error;
   EXPECT_EQ(read_text(path), "precious content\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -624,13 +643,13 @@ TEST(IoAtomicFile, FailingBodyKeepsOriginalAndLeavesNoTemporary)
   // A body that breaks its stream but claims success is caught by the stream check.
   error.clear();
   EXPECT_FALSE(ICM::internal::write_file_atomically(
-      path,
-      [](std::ostream& os) {
-        os << "garbage";
-        os.setstate(std::ios::badbit);
-        return true;
-      },
-      error));
+    path,
+    [](std::ostream& os) {
+      os << "garbage";
+      os.setstate(std::ios::badbit);
+      return true;
+    },
+    error));
   EXPECT_FALSE(error.empty());
   EXPECT_EQ(read_text(path), "precious content\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -643,12 +662,12 @@ TEST(IoAtomicFile, SuccessReplacesTheFile)
   write_text(path, "old\n");
   std::string error = "stale";
   EXPECT_TRUE(ICM::internal::write_file_atomically(
-      path,
-      [](std::ostream& os) {
-        os << "new " << 1.5 << '\n';
-        return true;
-      },
-      error));
+    path,
+    [](std::ostream& os) {
+      os << "new " << 1.5 << '\n';
+      return true;
+    },
+    error));
   EXPECT_TRUE(error.empty());
   EXPECT_EQ(read_text(path), "new 1.5\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -660,7 +679,7 @@ TEST(IoAtomicFile, TargetIsADirectory)
   fs::create_directory(dir.path() / "sub");
   std::string error;
   EXPECT_FALSE(ICM::internal::write_file_atomically(
-      dir.file("sub"), [](std::ostream& os) { return static_cast<bool>(os << "x"); }, error));
+    dir.file("sub"), [](std::ostream& os) { return static_cast<bool>(os << "x"); }, error));
   EXPECT_FALSE(error.empty());
   EXPECT_TRUE(fs::is_directory(dir.path() / "sub"));
   EXPECT_EQ(dir.number_of_entries(), 1u);
@@ -672,7 +691,8 @@ TEST(IoAtomicFile, TargetIsADirectory)
 int wait_status_of_child(const std::function<void()>& child)
 {
   const pid_t pid = ::fork();
-  if(pid == 0) {
+  if(pid == 0)
+  {
     child();
     ::_exit(0);
   }
@@ -686,22 +706,27 @@ int wait_status_of_child(const std::function<void()>& child)
 void write_interrupted_by(int sig, const std::string& obj, const std::string& svg)
 {
   std::string error;
-  const bool written = ICM::internal::write_files_atomically(
-      {{obj, [](std::ostream& os) { return static_cast<bool>(os << "v 0 0 0\n"); }},
-       {svg, [sig](std::ostream& os) {
-          os << "<svg>" << std::flush;
-          ::raise(sig);
-          return static_cast<bool>(os << "</svg>\n");
-        }}},
-      error);
+  const bool written =
+    ICM::internal::write_files_atomically({{obj, [](std::ostream& os) { return static_cast<bool>(os << "v 0 0 0\n"); }},
+                                           {svg,
+                                            [sig](std::ostream& os) {
+                                              os << "<svg>" << std::flush;
+                                              ::raise(sig);
+                                              return static_cast<bool>(os << "</svg>\n");
+                                            }}},
+                                          error);
   ::_exit(written ? 0 : 1);
 }
 
-void exit_42(int) { ::_exit(42); }
+void exit_42(int)
+{
+  ::_exit(42);
+}
 
 TEST(IoAtomicFile, SignalWhileWritingLeavesNoTemporaryAndKillsBySignal)
 {
-  for(int sig : {SIGTERM, SIGINT}) {
+  for(int sig : {SIGTERM, SIGINT})
+  {
     Temp_dir dir("icm_test_io");
     const std::string obj = dir.file("out.obj"), svg = dir.file("out.svg");
     write_text(obj, "previous\n");
@@ -743,7 +768,8 @@ TEST(IoLogAreaRatios, SimilarityGivesZero)
   build_grid(sm);
   // Distort the 3D positions so faces have different areas, and tilt them out of z = 0.
   auto vpm = get(CGAL::vertex_point, sm);
-  for(auto v : vertices(sm)) {
+  for(auto v : vertices(sm))
+  {
     const Point_3 p = get(vpm, v);
     put(vpm, v, Point_3(p.x() + 0.3 * p.y() * p.y(), p.y() + 0.1 * p.x(), 0.));
   }
@@ -751,7 +777,8 @@ TEST(IoLogAreaRatios, SimilarityGivesZero)
   // points tilted out of z = 0 by a rotation about the x axis (an isometry).
   const double c = std::cos(0.7), s = std::sin(0.7), scale = 123.456;
   std::unordered_map<SM_vertex_descriptor, Point_2> uv;
-  for(auto v : vertices(sm)) {
+  for(auto v : vertices(sm))
+  {
     const Point_3 p = get(vpm, v);
     uv[v] = Point_2(scale * (c * p.x() - s * p.y()) + 1e3, -scale * (s * p.x() + c * p.y()) - 7.);
     put(vpm, v, Point_3(p.x(), c * p.y(), s * p.y()));
@@ -768,7 +795,8 @@ TEST(IoLogAreaRatios, OneFaceDoubled)
   const int n = 5;
   ICM::IO::Uv_mesh m = separate_triangles(n);
   // Scale face 0's UVs by sqrt(2) about its first corner: its UV area doubles.
-  for(int k = 1; k < 3; ++k) {
+  for(int k = 1; k < 3; ++k)
+  {
     auto& t = m.uvs[k];
     const auto& o = m.uvs[0];
     t = {{o[0] + std::sqrt(2.) * (t[0] - o[0]), o[1] + std::sqrt(2.) * (t[1] - o[1])}};
@@ -790,8 +818,8 @@ TEST(IoLogAreaRatios, OneFaceDoubled)
 TEST(IoLogAreaRatios, DegenerateFacesAreClamped)
 {
   ICM::IO::Uv_mesh m = separate_triangles(3);
-  m.uvs[2] = m.uvs[1];                    // face 0: zero UV area
-  m.positions[5] = m.positions[4];        // face 1: zero 3D area
+  m.uvs[2] = m.uvs[1];             // face 0: zero UV area
+  m.positions[5] = m.positions[4]; // face 1: zero 3D area
   const std::vector<double> r = ICM::IO::log_area_ratios(m);
   EXPECT_EQ(r[0], -ICM::IO::log_area_ratio_clamp);
   EXPECT_EQ(r[1], ICM::IO::log_area_ratio_clamp);
@@ -822,8 +850,8 @@ TEST(IoSvg, OnePolygonPerFaceAndEscapedTitle)
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
   EXPECT_EQ(count_occurrences(svg, "<polygon"), m.number_of_faces());
   EXPECT_NE(svg.find("ICM &lt;grid&gt; &amp; co"), std::string::npos);
-  EXPECT_EQ(count_occurrences(svg, "<linearGradient"), 1u);  // the colour bar
-  EXPECT_NE(svg.find(">-2<"), std::string::npos);            // its range
+  EXPECT_EQ(count_occurrences(svg, "<linearGradient"), 1u); // the colour bar
+  EXPECT_NE(svg.find(">-2<"), std::string::npos);           // its range
   EXPECT_NE(svg.find(">+2<"), std::string::npos);
   // An area preserving layout is white everywhere, and nothing is flipped.
   EXPECT_EQ(count_occurrences(svg, "fill=\"#ffffff\"/>"), m.number_of_faces());
@@ -833,7 +861,7 @@ TEST(IoSvg, OnePolygonPerFaceAndEscapedTitle)
 
 TEST(IoSvg, CoordinatesFitTheSquareWithYUp)
 {
-  ICM::IO::Uv_mesh m = separate_triangles(1);  // uv (0,0), (1,0), (0,1)
+  ICM::IO::Uv_mesh m = separate_triangles(1); // uv (0,0), (1,0), (0,1)
   Temp_dir dir("icm_test_io");
   const std::string path = dir.file("t.svg");
   ICM::IO::Svg_options opt;
@@ -843,8 +871,7 @@ TEST(IoSvg, CoordinatesFitTheSquareWithYUp)
   std::string error;
   ASSERT_TRUE(ICM::IO::write_uv_svg(path, m, error, opt)) << error;
   // UV (0,0) is the bottom left corner of the 80 px square, (0,1) its top left.
-  EXPECT_NE(read_text(path).find("points=\"10,90 90,90 10,10\""), std::string::npos)
-      << read_text(path);
+  EXPECT_NE(read_text(path).find("points=\"10,90 90,90 10,10\""), std::string::npos) << read_text(path);
 }
 
 TEST(IoSvg, FlippedFacesAreHighlighted)
@@ -858,7 +885,7 @@ TEST(IoSvg, FlippedFacesAreHighlighted)
   ASSERT_TRUE(ICM::IO::write_uv_svg(dir.file("a.svg"), m, error)) << error;
   std::string svg = read_text(dir.file("a.svg"));
   EXPECT_EQ(count_occurrences(svg, "<polygon"), 4u);
-  EXPECT_EQ(count_occurrences(svg, "stroke=\"#00ff00\""), 2u);  // the face group + legend swatch
+  EXPECT_EQ(count_occurrences(svg, "stroke=\"#00ff00\""), 2u); // the face group + legend swatch
   EXPECT_NE(svg.find("1 flipped face<"), std::string::npos);
 
   // Mirroring the whole layout flips nothing: it is mirrored back before drawing.
@@ -888,9 +915,9 @@ TEST(IoSvg, PanelsSideBySideWithOneColourBar)
   ICM::IO::Uv_mesh doubled = separate_triangles(3);
   for(auto& t : doubled.uvs)
     t = {{2. * t[0], 2. * t[1]}};
-  doubled.uvs[1][0] += 1.;  // face 0 enlarged
-  const std::vector<std::pair<std::string, ICM::IO::Uv_mesh> > panels = {
-      {"ICM", grid_uv_mesh()}, {"LSCM", doubled}, {"ARAP", separate_triangles(2)}};
+  doubled.uvs[1][0] += 1.; // face 0 enlarged
+  const std::vector<std::pair<std::string, ICM::IO::Uv_mesh>> panels = {
+    {"ICM", grid_uv_mesh()}, {"LSCM", doubled}, {"ARAP", separate_triangles(2)}};
   Temp_dir dir("icm_test_io");
   const std::string path = dir.file("cmp.svg");
   ICM::IO::Svg_options opt;

@@ -308,12 +308,10 @@ TEST(BorderOverlaps, EdgesSharingAVertexCountWhenCollinearAndOverlapping)
   const Mesh_index triangle = make_index({{0, 0}, {1, 0}, {0, 1}}, {{0, 1, 2}});
   // Flattened with vertex 2 between 0 and 1: edge 01 overlaps both 02 and 12, which meet
   // each other only at vertex 2, where they leave in opposite directions.
-  const ICM::Border_overlaps between =
-    ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {1, 0}});
+  const ICM::Border_overlaps between = ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {1, 0}});
   EXPECT_EQ(between.crossing_pairs, 2);
   // Flattened with vertex 2 beyond vertex 1: 02 overlaps 01 and 12; 01 and 12 only touch.
-  const ICM::Border_overlaps beyond =
-    ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {3, 0}});
+  const ICM::Border_overlaps beyond = ICM::count_border_overlaps(triangle, {{0, 0}, {2, 0}, {3, 0}});
   EXPECT_EQ(beyond.crossing_pairs, 2);
 }
 
@@ -326,9 +324,9 @@ TEST(BorderOverlaps, TouchingIsDecidedExactly)
     const Mesh_index index = fan({{0, 0}, {3, 1}, {3, 4}, {1.5, y3}, {0, 4}}, uv);
     return ICM::count_border_overlaps(index, uv).crossing_pairs;
   };
-  EXPECT_EQ(count_with(0.5), 2);                         // on the edge: touches
-  EXPECT_EQ(count_with(std::nextafter(0.5, 1.0)), 0);    // one ulp above: clear
-  EXPECT_EQ(count_with(std::nextafter(0.5, 0.0)), 2);    // one ulp below: crosses
+  EXPECT_EQ(count_with(0.5), 2);                      // on the edge: touches
+  EXPECT_EQ(count_with(std::nextafter(0.5, 1.0)), 0); // one ulp above: clear
+  EXPECT_EQ(count_with(std::nextafter(0.5, 0.0)), 2); // one ulp below: crosses
 }
 
 TEST(BorderOverlaps, DistinctVerticesAtOneUvOverlap)
@@ -356,8 +354,7 @@ TEST(BorderOverlaps, MatchesAllPairsOnRandomPolygons)
     const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
     EXPECT_EQ(overlaps.crossing_pairs, brute_force_crossings(loop)) << n;
     EXPECT_TRUE(std::is_sorted(overlaps.pairs.begin(), overlaps.pairs.end()));
-    EXPECT_TRUE(std::adjacent_find(overlaps.pairs.begin(), overlaps.pairs.end()) ==
-                overlaps.pairs.end());
+    EXPECT_TRUE(std::adjacent_find(overlaps.pairs.begin(), overlaps.pairs.end()) == overlaps.pairs.end());
   }
 }
 
@@ -390,10 +387,8 @@ TEST(BorderOverlaps, RejectsBadInput)
 {
   const Mesh_index triangle = make_index({{0, 0}, {1, 0}, {0, 1}}, {{0, 1, 2}});
   EXPECT_THROW(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}}), std::invalid_argument);
-  EXPECT_THROW(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}, {0, std::nan("")}}),
-               std::invalid_argument);
-  EXPECT_THROW(ICM::overlapping_face_pairs(triangle, {{0, 0}, {1, 0}, {0, 1}}, {3}),
-               std::invalid_argument);
+  EXPECT_THROW(ICM::count_border_overlaps(triangle, {{0, 0}, {1, 0}, {0, std::nan("")}}), std::invalid_argument);
+  EXPECT_THROW(ICM::overlapping_face_pairs(triangle, {{0, 0}, {1, 0}, {0, 1}}, {3}), std::invalid_argument);
 }
 
 // Not a pass/fail figure: prints how long a 100k-edge border takes (see the report).
@@ -442,13 +437,12 @@ namespace {
 bool boxes_apart(const ICM::Chart_box& a, const ICM::Chart_box& b, double gap)
 {
   const double slack = 1e-9 * (1 + gap);
-  return a[2] + gap <= b[0] + slack || b[2] + gap <= a[0] + slack ||
-         a[3] + gap <= b[1] + slack || b[3] + gap <= a[1] + slack;
+  return a[2] + gap <= b[0] + slack || b[2] + gap <= a[0] + slack || a[3] + gap <= b[1] + slack ||
+         b[3] + gap <= a[1] + slack;
 }
 
 /// Checks the contract of a packing: sizes kept, boxes a gap apart, extent from (0, 0).
-void expect_valid_packing(const std::vector<ICM::Chart_box>& boxes,
-                          const ICM::Chart_packing& packing)
+void expect_valid_packing(const std::vector<ICM::Chart_box>& boxes, const ICM::Chart_packing& packing)
 {
   ASSERT_EQ(packing.placements.size(), boxes.size());
   std::vector<ICM::Chart_box> placed;
@@ -618,10 +612,8 @@ TEST(ChartPacking, PackChartsMovesPointSetsRigidly)
     ASSERT_EQ(charts[c].size(), original[c].size());
     for(std::size_t k = 1; k < charts[c].size(); ++k)
     {
-      const double d_before = std::hypot(original[c][k][0] - original[c][0][0],
-                                         original[c][k][1] - original[c][0][1]);
-      const double d_after =
-        std::hypot(charts[c][k][0] - charts[c][0][0], charts[c][k][1] - charts[c][0][1]);
+      const double d_before = std::hypot(original[c][k][0] - original[c][0][0], original[c][k][1] - original[c][0][1]);
+      const double d_after = std::hypot(charts[c][k][0] - charts[c][0][0], charts[c][k][1] - charts[c][0][1]);
       EXPECT_NEAR(d_after, d_before, 1e-12 * (1 + d_before));
       // Orientation is kept too: a quarter turn is a rotation, not a reflection.
       if(k >= 2)
@@ -676,7 +668,7 @@ TEST(ChartPacking, PackedChartsHaveNoBorderOverlap)
     p = {0.5 * p[0] + 0.3, 0.5 * p[1]}; // the second chart smaller, inside the first
   std::vector<Uv> stacked = charts[0];
   stacked.insert(stacked.end(), charts[1].begin(), charts[1].end());
-  EXPECT_TRUE(ICM::count_border_overlaps(index, stacked).empty());  // nested: borders apart
+  EXPECT_TRUE(ICM::count_border_overlaps(index, stacked).empty());   // nested: borders apart
   EXPECT_FALSE(ICM::overlapping_face_pairs(index, stacked).empty()); // ... but faces overlap
 
   ICM::pack_charts(charts);
@@ -711,8 +703,7 @@ TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
 
   std::vector<ICM::Uv> harmonic;
   std::string message;
-  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, solver.laplacian(), harmonic, message))
-    << message;
+  ASSERT_TRUE(ICM::layout_harmonic(index, lengths, k, w, solver.laplacian(), harmonic, message)) << message;
   const ICM::Layout_check b = ICM::check_layout(index, lengths, harmonic);
   EXPECT_EQ(b.flipped_faces, 0);
   EXPECT_LT(b.max_relative_length_error, 1e-8);
@@ -742,8 +733,7 @@ TEST(Layout, EquilateralGridLaysOutAsItself)
   const ICM::internal::Mesh_index grid = icm_test::equilateral_grid(5);
   const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(grid);
   Eigen::VectorXd u;
-  const ICM::Newton_report report =
-    ICM::free_boundary_optimum(grid, metric, ICM::boundary_singular_set(grid), u);
+  const ICM::Newton_report report = ICM::free_boundary_optimum(grid, metric, ICM::boundary_singular_set(grid), u);
   ASSERT_TRUE(report.converged);
   EXPECT_EQ(report.iterations, 0);
   ICM::Curvature_map<> curvature(grid, metric);
@@ -754,8 +744,7 @@ TEST(Layout, EquilateralGridLaysOutAsItself)
     {
       const auto& p = grid.points[i];
       const auto& q = grid.points[j];
-      EXPECT_NEAR(std::hypot(uv[i][0] - uv[j][0], uv[i][1] - uv[j][1]),
-                  std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
+      EXPECT_NEAR(std::hypot(uv[i][0] - uv[j][0], uv[i][1] - uv[j][1]), std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
     }
 }
 
@@ -856,4 +845,3 @@ TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
   EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
   EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
 }
-

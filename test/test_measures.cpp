@@ -41,17 +41,20 @@ using Planar_map = std::function<Planar(const Planar&)>;
 
 const double pi = std::acos(-1.0);
 constexpr double tolerance = 1e-9;
-constexpr int grid_size = 4;  // squares per side
+constexpr int grid_size = 4; // squares per side
 
 // --- a planar grid placed in general position in 3D ----------------------------------------
 
 struct Grid
 {
-  std::vector<Planar> vertices;                    // planar coordinates
-  std::vector<std::array<std::size_t, 3>> triangles;  // counterclockwise in the plane
+  std::vector<Planar> vertices;                      // planar coordinates
+  std::vector<std::array<std::size_t, 3>> triangles; // counterclockwise in the plane
 };
 
-std::size_t grid_vertex(int i, int j, int n) { return static_cast<std::size_t>(j * (n + 1) + i); }
+std::size_t grid_vertex(int i, int j, int n)
+{
+  return static_cast<std::size_t>(j * (n + 1) + i);
+}
 
 // n x n unit squares on [0, n]^2, each split along its diagonal (i, j)-(i+1, j+1) into
 // A = (i,j) (i+1,j) (i+1,j+1) and B = (i,j) (i+1,j+1) (i,j+1).
@@ -73,12 +76,15 @@ Grid make_grid(int n)
 // A fixed rigid motion, so that no face's frame is the plane's own: the measures must not see it.
 std::array<double, 3> embed_in_space(const Planar& p)
 {
-  const double a = 0.3, b = 1.1;  // rotation about x by a, then about z by b
+  const double a = 0.3, b = 1.1; // rotation about x by a, then about z by b
   const double x = p[0], y = std::cos(a) * p[1], z = std::sin(a) * p[1];
   return {std::cos(b) * x - std::sin(b) * y + 1.5, std::sin(b) * x + std::cos(b) * y - 2.0, z + 0.25};
 }
 
-Planar identity(const Planar& p) { return p; }
+Planar identity(const Planar& p)
+{
+  return p;
+}
 
 void flatten(const Grid& grid, const Planar_map& uv_of, Xyz& xyz, Uv& uv)
 {
@@ -187,7 +193,7 @@ TEST(Distortion, PureShearMatchesClosedForms)
     const auto shear = [s](const Planar& p) -> Planar { return {p[0] + s * p[1], p[1]}; };
     const ICM::Distortion_measures m = measure_grid(shear);
 
-    const double s1_over_s2 = (2 + s * s + std::abs(s) * std::sqrt(4 + s * s)) / 2;  // = s1^2
+    const double s1_over_s2 = (2 + s * s + std::abs(s) * std::sqrt(4 + s * s)) / 2; // = s1^2
     // Image of A: (0,0) (1,0) (1+s,1); of B: (0,0) (1+s,1) (s,1).
     const double a0 = std::atan2(1.0, 1 + s), a1 = std::atan2(1.0, -s);
     const double b0 = std::atan2(1.0, 1 + s + s * s), b1 = std::atan2(1.0, 1 + s);
@@ -211,7 +217,7 @@ TEST(Distortion, PureShearMatchesClosedForms)
 // so s1/s2 = a/b (a > b) and every figure depends on a/b only.
 TEST(Distortion, NonUniformScaleMatchesClosedForms)
 {
-  const double a = 3.0, b = 0.75;  // a b != 1: exercises the area normalisation
+  const double a = 3.0, b = 0.75; // a b != 1: exercises the area normalisation
   const auto scale = [&](const Planar& p) -> Planar { return {a * p[0], b * p[1]}; };
   const ICM::Distortion_measures m = measure_grid(scale);
 
@@ -262,7 +268,10 @@ TEST(Distortion, CornerOrderOfAFaceDoesNotMatter)
 // --- flipped and degenerate faces ----------------------------------------------------------------
 
 // The grid corner (n, 0) belongs to one triangle only: (n-1,0) (n,0) (n,1).
-bool is_lonely_corner(const Planar& p) { return p[0] == grid_size && p[1] == 0; }
+bool is_lonely_corner(const Planar& p)
+{
+  return p[0] == grid_size && p[1] == 0;
+}
 
 TEST(Distortion, OneFoldedFaceIsCountedOnce)
 {
@@ -270,15 +279,14 @@ TEST(Distortion, OneFoldedFaceIsCountedOnce)
   // Move the corner across the opposite edge: signed area 0.5 -> -0.25.
   const auto fold = [](const Planar& p) -> Planar { return is_lonely_corner(p) ? Planar{grid_size - 1.0, 0.5} : p; };
   const ICM::Distortion_measures m = measure_grid(fold);
-  const double c2 = n2 / (n2 - 0.25);  // area normalisation: total |UV area| = n^2 - 0.25
+  const double c2 = n2 / (n2 - 0.25); // area normalisation: total |UV area| = n^2 - 0.25
 
   EXPECT_EQ(m.flipped_faces, 1u);
   EXPECT_EQ(m.degenerate_uv_faces, 0u);
   EXPECT_NEAR(m.area_ratio_min, 0.5 * c2, tolerance);
   EXPECT_NEAR(m.area_ratio_max, c2, tolerance);
   EXPECT_NEAR(m.log_area_distortion,
-              ((2 * n2 - 1) * std::pow(std::log(c2), 2) + std::pow(std::log(0.5 * c2), 2)) / (2 * n2),
-              tolerance);
+              ((2 * n2 - 1) * std::pow(std::log(c2), 2) + std::pow(std::log(0.5 * c2), 2)) / (2 * n2), tolerance);
   EXPECT_GT(m.conformality, 0);
   expect_all_finite(m);
 
@@ -296,7 +304,7 @@ TEST(Distortion, DegenerateUvFaceIsCountedAndExcluded)
   // The corner onto the opposite edge's line: (n-1,0) (n-1/2,1/2) (n,1) are collinear.
   const auto collapse = [&](const Planar& p) -> Planar { return is_lonely_corner(p) ? Planar{n - 0.5, 0.5} : p; };
   const ICM::Distortion_measures m = measure_grid(collapse);
-  const double c2 = n2 / (n2 - 0.5);  // every other face is scaled by c
+  const double c2 = n2 / (n2 - 0.5); // every other face is scaled by c
 
   EXPECT_EQ(m.flipped_faces, 0u);
   EXPECT_EQ(m.degenerate_uv_faces, 1u);
@@ -307,7 +315,7 @@ TEST(Distortion, DegenerateUvFaceIsCountedAndExcluded)
   // The others are similarities with area ratio c^2.
   EXPECT_NEAR(m.l2_shear, 0, tolerance);
   EXPECT_NEAR(m.l2_stretch, 1 / std::sqrt(c2), tolerance);
-  EXPECT_NEAR(m.log_area_distortion, std::pow(std::log(c2), 2), tolerance);  // mean over 2n^2 - 1 faces
+  EXPECT_NEAR(m.log_area_distortion, std::pow(std::log(c2), 2), tolerance); // mean over 2n^2 - 1 faces
   EXPECT_NEAR(m.qc_mean, 1, tolerance);
   EXPECT_NEAR(m.qc_max, 1, tolerance);
   EXPECT_NEAR(m.area_ratio_min, c2, tolerance);
@@ -319,7 +327,7 @@ TEST(Distortion, Degenerate3dFaceIsCountedAndExcluded)
   Xyz xyz;
   Uv uv;
   flatten(make_grid(grid_size), identity, xyz, uv);
-  for(int k = 0; k < 3; ++k)  // third corner of face 0 onto the midpoint of its first edge
+  for(int k = 0; k < 3; ++k) // third corner of face 0 onto the midpoint of its first edge
     xyz[2][k] = 0.5 * (xyz[0][k] + xyz[1][k]);
   const ICM::Distortion_measures m = ICM::measure_distortion_of_triangles(xyz, uv);
   const double n2 = grid_size * grid_size, c2 = (n2 - 0.5) / n2;
@@ -356,7 +364,10 @@ TEST(Distortion, MalformedInputThrows)
 
 // --- the FaceGraph front ends ----------------------------------------------------------------
 
-Planar warp(const Planar& p) { return {p[0] + 0.1 * p[1] * p[1], p[1] + 0.05 * p[0] * p[1]}; }
+Planar warp(const Planar& p)
+{
+  return {p[0] + 0.1 * p[1] * p[1], p[1] + 0.05 * p[0] * p[1]};
+}
 
 std::vector<Point_3> grid_points(const Grid& grid)
 {
@@ -413,7 +424,7 @@ TEST(DistortionFrontEnds, SurfaceMeshVertexUvAgreesWithFlatCore)
     put(uvmap, v, Point_2(q[0], q[1]));
   }
   const ICM::Distortion_measures reference = flat_reference(grid);
-  EXPECT_GT(reference.conformality, 1e-4);  // a real distortion, not a trivial agreement
+  EXPECT_GT(reference.conformality, 1e-4); // a real distortion, not a trivial agreement
   expect_same_measures(ICM::measure_distortion(mesh, uvmap), reference);
   expect_same_measures(ICM::measure_distortion(mesh, uvmap, mesh.points()), reference);
 }
@@ -437,7 +448,10 @@ TEST(DistortionFrontEnds, PolyhedronVertexUvAgreesWithFlatCore)
 
 // A slit along y = 2 from x = 0 to x = 2, opened in UV: the copies on the faces above the slit
 // move up. The corner UV is a function of the vertex and of the side of the face it is seen from.
-bool on_slit(const Planar& p) { return p[1] == 2 && p[0] < 2; }
+bool on_slit(const Planar& p)
+{
+  return p[1] == 2 && p[0] < 2;
+}
 
 Planar slit_corner_uv(const Planar& vertex, bool face_above_slit)
 {
@@ -494,14 +508,16 @@ TEST(DistortionFrontEnds, SeamMeshAndCornerUvAgreeWithFlatCore)
   auto seam_vertices = mesh.add_property_map<Surface_mesh::Vertex_index, bool>("v:on_seam", false).first;
   using Seam_mesh = CGAL::Seam_mesh<Surface_mesh, decltype(seam_edges), decltype(seam_vertices)>;
   Seam_mesh seam_mesh(mesh, seam_edges, seam_vertices);
-  auto grid_index = [](int i, int j) { return Surface_mesh::Vertex_index(Surface_mesh::size_type(j * (grid_size + 1) + i)); };
+  auto grid_index = [](int i, int j) {
+    return Surface_mesh::Vertex_index(Surface_mesh::size_type(j * (grid_size + 1) + i));
+  };
   for(int i = 0; i < 2; ++i)
   {
     // polygon_soup_to_polygon_mesh keeps the soup's point order on a fresh Surface_mesh.
     ASSERT_EQ(planar(mesh.point(grid_index(i, 2)))[0], i);
     ASSERT_TRUE(seam_mesh.add_seam(grid_index(i, 2), grid_index(i + 1, 2)));
   }
-  EXPECT_EQ(num_vertices(seam_mesh), num_vertices(mesh) + 2);  // (0,2) and (1,2) are doubled
+  EXPECT_EQ(num_vertices(seam_mesh), num_vertices(mesh) + 2); // (0,2) and (1,2) are doubled
 
   using seam_vertex = boost::graph_traits<Seam_mesh>::vertex_descriptor;
   std::unordered_map<seam_vertex, Point_2> uv;
@@ -556,7 +572,7 @@ TEST(DistortionFrontEnds, NefertitiProjectionAgreesAcrossFrontEnds)
   expect_all_finite(reference);
   EXPECT_GE(reference.qc_max, reference.qc_mean);
   EXPECT_GE(reference.qc_mean, 1);
-  EXPECT_GE(reference.l2_stretch, 1);  // Sander's L2 stretch is >= 1 once areas are normalised
+  EXPECT_GE(reference.l2_stretch, 1); // Sander's L2 stretch is >= 1 once areas are normalised
 
   Surface_mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, mesh);
@@ -572,13 +588,14 @@ TEST(DistortionFrontEnds, NefertitiProjectionAgreesAcrossFrontEnds)
   Polyhedron polyhedron;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, polyhedron);
   using vertex_descriptor = boost::graph_traits<Polyhedron>::vertex_descriptor;
-  std::unordered_map<vertex_descriptor, std::array<double, 2>> array_uv;  // [0]/[1] access
+  std::unordered_map<vertex_descriptor, std::array<double, 2>> array_uv; // [0]/[1] access
   for(auto v : vertices(polyhedron))
     array_uv[v] = {v->point().x(), v->point().y()};
   expect_same_measures(
-      ICM::measure_distortion(polyhedron,
-                              boost::associative_property_map<std::unordered_map<vertex_descriptor, std::array<double, 2>>>(array_uv)),
-      reference);
+    ICM::measure_distortion(
+      polyhedron,
+      boost::associative_property_map<std::unordered_map<vertex_descriptor, std::array<double, 2>>>(array_uv)),
+    reference);
 }
 
-}  // namespace
+} // namespace

@@ -40,10 +40,9 @@ using icm_test::dense_laplacian;
 
 template <class Metric>
 class MetricConcept : public testing::Test
-{
-};
-using Metrics = testing::Types<ICM::Circle_packing_metric, ICM::Inversive_distance_metric,
-                               ICM::Vertex_scaling_metric, ICM::Intrinsic_delaunay_metric>;
+{};
+using Metrics = testing::Types<ICM::Circle_packing_metric, ICM::Inversive_distance_metric, ICM::Vertex_scaling_metric,
+                               ICM::Intrinsic_delaunay_metric>;
 TYPED_TEST_SUITE(MetricConcept, Metrics, icm_test::Metric_test_names);
 
 TYPED_TEST(MetricConcept, JacobianIsSymmetricWithZeroRowSumsAndEqualsFiniteDifferences)
@@ -104,8 +103,7 @@ Eigen::VectorXd angle_defect(const Mesh_index& index)
 // The metrics that are the mesh at u0.
 template <class Metric>
 class ExactMetric : public testing::Test
-{
-};
+{};
 using Exact_metrics = testing::Types<ICM::Inversive_distance_metric, ICM::Vertex_scaling_metric>;
 TYPED_TEST_SUITE(ExactMetric, Exact_metrics, icm_test::Metric_test_names);
 
@@ -159,8 +157,7 @@ TEST(VertexScalingMetric, CotangentWeightsOfARightTriangle)
   index.faces = {{0, 1, 2}};
   ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
   const ICM::Vertex_scaling_metric metric(index);
-  const ICM::Face_geometry face =
-    metric.face_geometry(index.face_edges[0], {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0});
+  const ICM::Face_geometry face = metric.face_geometry(index.face_edges[0], {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0});
   EXPECT_TRUE(face.valid);
   EXPECT_NEAR(face.angles.angle[0], M_PI / 2, 1e-15);
   EXPECT_NEAR(face.weight[0], 0.0, 1e-15);
@@ -169,8 +166,7 @@ TEST(VertexScalingMetric, CotangentWeightsOfARightTriangle)
   EXPECT_NEAR(face.angles.area, 6.0, 1e-14);
   // A factor e^8 at vertex 1 scales its edges 01 and 12 by e^4: sides 3e^4, 5e^4 and 4,
   // and 3e^4 + 4 < 5e^4, so the lengths no longer close a triangle.
-  const ICM::Face_geometry far =
-    metric.face_geometry(index.face_edges[0], {1.0, std::exp(8.0), 1.0}, {0.0, 0.0, 0.0});
+  const ICM::Face_geometry far = metric.face_geometry(index.face_edges[0], {1.0, std::exp(8.0), 1.0}, {0.0, 0.0, 0.0});
   EXPECT_FALSE(far.valid);
 }
 
@@ -243,7 +239,6 @@ TEST(IntrinsicDelaunayMetric, PtolemyFlipOfACyclicDiamondGivesTheOtherDiagonal)
   }
 }
 
-
 } // namespace
 
 TEST(CirclePackingMetric, EquilateralGridIsReproducedExactly)
@@ -304,4 +299,3 @@ TEST(CirclePackingMetric, AnglesStayInTheRangeThatKeepsTrianglesValid)
     EXPECT_TRUE(k.allFinite());
   }
 }
-

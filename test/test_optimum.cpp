@@ -42,7 +42,10 @@ using Surface_mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using ICM::internal::Mesh_index;
 namespace SMP = CGAL::Surface_mesh_parameterization;
 
-Mesh_index index_file(const std::string& name) { return icm_test::index_of(icm_test::data_path(name)); }
+Mesh_index index_file(const std::string& name)
+{
+  return icm_test::index_of(icm_test::data_path(name));
+}
 
 /// A user-defined energy: the fourth power of the log area ratio, which punishes the worst
 /// faces harder than eq. 8. It names no metric and no derivative of one: the state's areas
@@ -118,10 +121,9 @@ double gradient_error(const Mesh_index& index, const Metric& metric, const Energ
 
 template <class Metric>
 class EnergyGradient : public testing::Test
-{
-};
-using Metrics = testing::Types<ICM::Intrinsic_delaunay_metric, ICM::Circle_packing_metric,
-                               ICM::Vertex_scaling_metric, ICM::Inversive_distance_metric>;
+{};
+using Metrics = testing::Types<ICM::Intrinsic_delaunay_metric, ICM::Circle_packing_metric, ICM::Vertex_scaling_metric,
+                               ICM::Inversive_distance_metric>;
 TYPED_TEST_SUITE(EnergyGradient, Metrics, icm_test::Metric_test_names);
 
 /// Optimizer options tight enough for Theorem 3.2 to 1e-6.
@@ -491,8 +493,8 @@ TEST(EnergyOptimizer, AUserDefinedEnergyIsMinimised)
     ICM::minimize_energy_on_singular_values(index, metric, S, Quartic_log_area(), u);
   ASSERT_FALSE(report.energy_history.empty()) << report.message;
   EXPECT_LT(report.final_energy, 0.95 * report.initial_energy);
-  std::cout << "quartic log-area on three_peaks: " << report.initial_energy << " -> " << report.final_energy
-            << " in " << report.iterations << " steps (" << report.message << ")\n";
+  std::cout << "quartic log-area on three_peaks: " << report.initial_energy << " -> " << report.final_energy << " in "
+            << report.iterations << " steps (" << report.message << ")\n";
 }
 
 namespace {
@@ -528,8 +530,7 @@ Table_row parameterize_with(Surface_mesh& mesh)
 }
 
 class EnergyLogArea : public testing::TestWithParam<const char*>
-{
-};
+{};
 
 } // namespace
 
@@ -568,7 +569,8 @@ TEST(EnergyParameterizer, DefaultEnergyKeepsTheFreeBoundaryOptimum)
   auto b = mesh.add_property_map<Surface_mesh::Vertex_index, Point_2>("v:b").first;
   const auto bhd = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
   ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh> by_default;
-  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, ICM::Curvature_entropy> entropy;
+  ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Default, ICM::Curvature_entropy>
+    entropy;
   ASSERT_EQ(SMP::parameterize(mesh, by_default, bhd, a), SMP::OK);
   ASSERT_EQ(SMP::parameterize(mesh, entropy, bhd, b), SMP::OK);
   for(auto v : vertices(mesh))
@@ -624,8 +626,7 @@ TEST(OptimalMetric, CholmodAndSimplicialSolversAgree)
   Eigen::VectorXd u_simplicial, u_cholmod, u_nested;
   const ICM::Newton_report a =
     ICM::free_boundary_optimum<ICM::Simplicial_solver>(index, metric, singular, u_simplicial);
-  const ICM::Newton_report b =
-    ICM::free_boundary_optimum<ICM::Cholmod_solver>(index, metric, singular, u_cholmod);
+  const ICM::Newton_report b = ICM::free_boundary_optimum<ICM::Cholmod_solver>(index, metric, singular, u_cholmod);
   const ICM::Newton_report c =
     ICM::free_boundary_optimum<ICM::Nested_dissection_solver>(index, metric, singular, u_nested);
   ASSERT_TRUE(a.converged) << a.message;
@@ -650,8 +651,7 @@ TEST(OptimalMetric, DegreeThreeVertexCanBeFlattened)
   // A fan whose centre has degree 3 inside a larger disk: with link angles clamped to pi/2
   // its angle sum could never reach 2 pi; the metric relaxes that link.
   ICM::internal::Mesh_index index;
-  index.points = {{0.2, 0.1, 0}, {2, 0, 0}, {-1, 1.7, 0}, {-1, -1.7, 0},
-                  {3, 2, 0}, {-3, 0.5, 0}, {1, -3, 0}};
+  index.points = {{0.2, 0.1, 0}, {2, 0, 0}, {-1, 1.7, 0}, {-1, -1.7, 0}, {3, 2, 0}, {-3, 0.5, 0}, {1, -3, 0}};
   index.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 4, 2}, {2, 5, 3}, {3, 6, 1}};
   ASSERT_TRUE(ICM::internal::build_connectivity(index).ok());
   ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
@@ -663,8 +663,7 @@ TEST(OptimalMetric, DegreeThreeVertexCanBeFlattened)
   EXPECT_NEAR(link, M_PI - 0.1 * M_PI, 1e-12);
   metric.set_intersection_angles(phi);
   Eigen::VectorXd u;
-  const ICM::Newton_report report =
-    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  const ICM::Newton_report report = ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
   EXPECT_TRUE(report.converged) << report.message;
 }
 
@@ -674,8 +673,8 @@ TEST(OptimalMetric, FourCycleAroundSeveralVerticesIsRelaxed)
   // angle orthogonal the border 4-cycle gives sum (pi - phi) = 2 pi exactly: the five inner
   // vertices reach flatness only as their radii tend to 0. No vertex link sees this cycle.
   ICM::internal::Mesh_index index;
-  index.points = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0},
-                  {0, -1, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 0}};
+  index.points = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0},  {-2, 2, 0}, {0, -1, 0},
+                  {1, 0, 0},   {0, 1, 0},  {-1, 0, 0}, {0, 0, 0}};
   for(int i = 0; i < 4; ++i)
   {
     const int c = i, c_next = (i + 1) % 4, d = 4 + i, d_next = 4 + (i + 1) % 4;
@@ -696,9 +695,7 @@ TEST(OptimalMetric, FourCycleAroundSeveralVerticesIsRelaxed)
   ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
   metric.set_intersection_angles(phi);
   Eigen::VectorXd u;
-  const ICM::Newton_report report =
-    ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
+  const ICM::Newton_report report = ICM::free_boundary_optimum(index, metric, ICM::boundary_singular_set(index), u);
   EXPECT_TRUE(report.converged) << report.message;
   EXPECT_LE(report.iterations, 10);
 }
-

@@ -90,9 +90,8 @@ void add_energy_cases(std::vector<Bad_option<Options>>& cases, const std::string
   add("max_line_search_steps", [](E& o) { o.max_line_search_steps = 0; });
   add("armijo", [](E& o) { o.armijo = 0; });
   add("armijo", [](E& o) { o.armijo = 1; });
-  add_newton_cases<Options>(cases, prefix + "newton.", [field](Options& o) -> ICM::Newton_options& {
-    return field(o).newton.emplace();
-  });
+  add_newton_cases<Options>(cases, prefix + "newton.",
+                            [field](Options& o) -> ICM::Newton_options& { return field(o).newton.emplace(); });
 }
 
 std::vector<Bad_option<ICM::Surface_parameterization_options>> surface_cases()
@@ -203,8 +202,8 @@ TEST(Options, LowerLayersRefuseBadOptionsToo)
 
   ICM::Diffusion_options diffusion;
   diffusion.step_fraction = nan_value;
-  const ICM::Diffusion_report diffused = ICM::free_boundary_curvature_diffusion(
-    index, metric, ICM::boundary_singular_set(index), u, diffusion);
+  const ICM::Diffusion_report diffused =
+    ICM::free_boundary_curvature_diffusion(index, metric, ICM::boundary_singular_set(index), u, diffusion);
   EXPECT_FALSE(diffused.converged);
   EXPECT_NE(diffused.message.find("option diffusion.step_fraction = nan"), std::string::npos) << diffused.message;
 }

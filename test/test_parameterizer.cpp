@@ -75,8 +75,8 @@ std::pair<int, int> topology(const Mesh& mesh)
 {
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> cycles;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
-  const int chi = static_cast<int>(num_vertices(mesh)) - static_cast<int>(num_edges(mesh)) +
-                  static_cast<int>(num_faces(mesh));
+  const int chi =
+    static_cast<int>(num_vertices(mesh)) - static_cast<int>(num_edges(mesh)) + static_cast<int>(num_faces(mesh));
   return {static_cast<int>(cycles.size()), chi};
 }
 
@@ -120,18 +120,15 @@ Surface_mesh ring_disk(int rings, Position position, int first_ring = 0)
     int a = 0, b = 0;
     while(a < n || b < m)
     {
-      const bool advance_outer = a == n || (b < m && next_angle(angle[i + 1], b + 1) <=
-                                                        next_angle(angle[i], a + 1));
+      const bool advance_outer = a == n || (b < m && next_angle(angle[i + 1], b + 1) <= next_angle(angle[i], a + 1));
       if(advance_outer)
       {
-        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], outer[(b + 1) % m]),
-                  Surface_mesh::null_face());
+        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], outer[(b + 1) % m]), Surface_mesh::null_face());
         ++b;
       }
       else
       {
-        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], inner[(a + 1) % n]),
-                  Surface_mesh::null_face());
+        EXPECT_NE(mesh.add_face(inner[a % n], outer[b % m], inner[(a + 1) % n]), Surface_mesh::null_face());
         ++a;
       }
     }
@@ -194,13 +191,11 @@ Surface_mesh lattice_hexagon(int radius, double jitter = 0, unsigned seed = 1)
     for(int r = -radius; r <= radius; ++r)
     {
       const SM_vertex a = find(q, r), b = find(q + 1, r), c = find(q, r + 1), d = find(q + 1, r + 1);
-      if(a != Surface_mesh::null_vertex() && b != Surface_mesh::null_vertex() &&
-         c != Surface_mesh::null_vertex())
+      if(a != Surface_mesh::null_vertex() && b != Surface_mesh::null_vertex() && c != Surface_mesh::null_vertex())
       {
         EXPECT_NE(mesh.add_face(a, b, c), Surface_mesh::null_face());
       }
-      if(b != Surface_mesh::null_vertex() && d != Surface_mesh::null_vertex() &&
-         c != Surface_mesh::null_vertex())
+      if(b != Surface_mesh::null_vertex() && d != Surface_mesh::null_vertex() && c != Surface_mesh::null_vertex())
       {
         EXPECT_NE(mesh.add_face(b, d, c), Surface_mesh::null_face());
       }
@@ -479,8 +474,7 @@ TEST(ParameterizerDropIn, SeamMeshOfClosedSphere)
   for(std::size_t i = 1; i + 1 < path.size(); ++i)
   {
     ASSERT_EQ(copies[path[i]].size(), 2u) << "path vertex " << i;
-    EXPECT_GT(std::sqrt(CGAL::squared_distance(copies[path[i]][0], copies[path[i]][1])), 1e-6)
-      << "path vertex " << i;
+    EXPECT_GT(std::sqrt(CGAL::squared_distance(copies[path[i]][0], copies[path[i]][1])), 1e-6) << "path vertex " << i;
   }
   EXPECT_EQ(copies[path.front()].size(), 1u);
   EXPECT_EQ(copies[path.back()].size(), 1u);
@@ -585,7 +579,7 @@ TEST(ParameterizerReport, SharedWithCopies)
   std::vector<std::string> stages;
   parameterizer.options().progress = [&](const std::string& s) { stages.push_back(s); };
   const SMP::Error_code status =
-    SMP::parameterize(mesh, parameterizer, PMP::longest_border(mesh).first, uv);  // by value
+    SMP::parameterize(mesh, parameterizer, PMP::longest_border(mesh).first, uv); // by value
   ASSERT_EQ(status, SMP::OK);
   const ICM::Parameterization_report& report = parameterizer.report();
   EXPECT_EQ(report.status, SMP::OK);
@@ -596,8 +590,8 @@ TEST(ParameterizerReport, SharedWithCopies)
   EXPECT_EQ(report.residual_history.size(), static_cast<std::size_t>(report.newton_iterations) + 1);
   EXPECT_EQ(report.layout, "propagation");
   EXPECT_GT(report.seconds_total, 0.0);
-  EXPECT_GE(report.seconds_total, report.seconds_index + report.seconds_metric +
-                                    report.seconds_optimum + report.seconds_layout - 1e-9);
+  EXPECT_GE(report.seconds_total,
+            report.seconds_index + report.seconds_metric + report.seconds_optimum + report.seconds_layout - 1e-9);
   EXPECT_EQ(copy.report().vertices, 299) << "a copy made before the run sees it too";
   EXPECT_EQ(stages, (std::vector<std::string>{"index", "metric", "optimum", "layout"}));
 
@@ -624,8 +618,8 @@ void expect_isometric(const Surface_mesh& mesh, UvMap uv, const std::string& wha
   for(auto e : edges(mesh))
   {
     const SM_vertex a = source(e, mesh), b = target(e, mesh);
-    const double ratio = std::sqrt(CGAL::squared_distance(get(uv, a), get(uv, b)) /
-                                   CGAL::squared_distance(mesh.point(a), mesh.point(b)));
+    const double ratio =
+      std::sqrt(CGAL::squared_distance(get(uv, a), get(uv, b)) / CGAL::squared_distance(mesh.point(a), mesh.point(b)));
     ratio_min = std::min(ratio_min, ratio);
     ratio_max = std::max(ratio_max, ratio);
   }
@@ -735,9 +729,8 @@ TEST(ParameterizerAnalytic, DevelopableDisksFlattenIsometrically)
     return mesh;
   };
   const double turn = 1.5 * CGAL_PI;
-  Surface_mesh cylinder = grid([&](double s, double t) {
-    return Point_3(std::cos(turn * s), std::sin(turn * s), 2.0 * t);
-  });
+  Surface_mesh cylinder =
+    grid([&](double s, double t) { return Point_3(std::cos(turn * s), std::sin(turn * s), 2.0 * t); });
   // Cone of half-angle 30 deg: radius grows with slant distance r as r sin 30.
   Surface_mesh cone = grid([&](double s, double t) {
     const double r = 1.0 + 2.0 * t;
@@ -826,8 +819,7 @@ TEST(ParameterizerAnalytic, SphericalCapMatchesStereographicScale)
   RecordProperty("rim_area_ratio", std::to_string(rim));
   EXPECT_LT(center, rim);
   // Face centroids: polar angle ~ 1/3 ring at the centre, ~ 11 2/3 rings at the rim.
-  EXPECT_NEAR(center / rim,
-              stereographic_ratio(max_polar / 36) / stereographic_ratio(max_polar * (1 - 1.0 / 36)),
+  EXPECT_NEAR(center / rim, stereographic_ratio(max_polar / 36) / stereographic_ratio(max_polar * (1 - 1.0 / 36)),
               0.05);
 }
 
@@ -835,8 +827,7 @@ TEST(ParameterizerAnalytic, SphericalCapMatchesStereographicScale)
 // 4. The disk meshes of the shared data set
 
 class SharedDisk : public testing::TestWithParam<const char*>
-{
-};
+{};
 
 TEST_P(SharedDisk, Parameterizes)
 {
@@ -853,10 +844,9 @@ TEST_P(SharedDisk, Parameterizes)
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SharedDisk,
-                         testing::Values("nefertiti.off", "mesh_with_border.off", "three_peaks.off",
-                                         "mushroom.off", "cylinder_locally_refined.off",
-                                         "lion-head.off", "camelhead.off", "mannequin-devil.off",
-                                         "horse.obj"),
+                         testing::Values("nefertiti.off", "mesh_with_border.off", "three_peaks.off", "mushroom.off",
+                                         "cylinder_locally_refined.off", "lion-head.off", "camelhead.off",
+                                         "mannequin-devil.off", "horse.obj"),
                          icm_test::Mesh_file_test_name());
 
 TEST(ParameterizerMetric, FallsBackToTheCirclePackingWhenTheMeshsOwnClassCannotGetThere)
@@ -948,14 +938,16 @@ struct Nearly_closed
 {
   const char* name;
   bool shared;
-  double min_area_ratio_span;  // area_ratio_max / area_ratio_min must exceed this
+  double min_area_ratio_span; // area_ratio_max / area_ratio_min must exceed this
 };
 
-void PrintTo(const Nearly_closed& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Nearly_closed& c, std::ostream* os)
+{
+  *os << c.name;
+}
 
 class NearlyClosed : public testing::TestWithParam<Nearly_closed>
-{
-};
+{};
 
 TEST_P(NearlyClosed, Parameterizes)
 {
@@ -1009,16 +1001,14 @@ TEST_P(NearlyClosed, Parameterizes)
   RecordProperty("log_area_free_boundary", std::to_string(m.log_area_distortion));
   RecordProperty("log_area_with_cones", std::to_string(coned.log_area_distortion));
   EXPECT_LT(10 * coned.log_area_distortion, m.log_area_distortion) << c.name;
-  std::cout << c.name << ": log area " << m.log_area_distortion << " free boundary, "
-            << coned.log_area_distortion << " with " << with_cones.charts[0].cones.size() << " cones\n";
+  std::cout << c.name << ": log area " << m.log_area_distortion << " free boundary, " << coned.log_area_distortion
+            << " with " << with_cones.charts[0].cones.size() << " cones\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, NearlyClosed,
                          testing::Values(Nearly_closed{"sphere966.off", false, 1e5},
-                                         Nearly_closed{"cow.off", true, 1e4},
-                                         Nearly_closed{"bull.off", true, 1e8},
-                                         Nearly_closed{"camel.off", true, 1e8},
-                                         Nearly_closed{"bear.off", true, 1e4},
+                                         Nearly_closed{"cow.off", true, 1e4}, Nearly_closed{"bull.off", true, 1e8},
+                                         Nearly_closed{"camel.off", true, 1e8}, Nearly_closed{"bear.off", true, 1e4},
                                          Nearly_closed{"armadillo.off", true, 1e8},
                                          Nearly_closed{"bunny00.off", true, 1e4}),
                          [](const testing::TestParamInfo<Nearly_closed>& info) {
@@ -1084,10 +1074,13 @@ TEST(ParameterizerBadInput, QuadFace)
 
 TEST(ParameterizerBadInput, AnnulusIsNotADisk)
 {
-  Surface_mesh mesh = ring_disk(4, [](int i, int k, int n, double& a) {
-    a = 2 * CGAL_PI * k / n;
-    return Point_3(i * std::cos(a), i * std::sin(a), 0);
-  }, 1);
+  Surface_mesh mesh = ring_disk(
+    4,
+    [](int i, int k, int n, double& a) {
+      a = 2 * CGAL_PI * k / n;
+      return Point_3(i * std::cos(a), i * std::sin(a), 0);
+    },
+    1);
   ASSERT_EQ(topology(mesh), std::make_pair(2, 0));
   auto uv = nan_uv_map(mesh);
   const Outcome run = run_cgal(mesh, uv);

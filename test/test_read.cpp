@@ -104,7 +104,8 @@ TEST(ReadPolygonSoup, ObjRelativeAndForwardIndices)
   EXPECT_EQ(coordinates(relative), square);
   EXPECT_EQ(relative.polygons, two_triangles);
   // A face may name vertices defined after it.
-  const Polygon_soup forward = soup_of("f 1 2 3\nf 1 3 4\nv 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\n", Mesh_file_format::Obj);
+  const Polygon_soup forward =
+    soup_of("f 1 2 3\nf 1 3 4\nv 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\n", Mesh_file_format::Obj);
   EXPECT_EQ(forward.polygons, two_triangles);
   EXPECT_NE(refusal_of("f 1 2 3\nf 1 3 5\nv 0 0 0\nv 1 0 0\nv 1 1 0.5\nv 0 1 0\n", Mesh_file_format::Obj)
               .find("line 2: face 1: vertex index 5 is out of range (the file has 4 vertices)"),
@@ -207,29 +208,39 @@ TEST(ReadPolygonSoup, EveryRefusalNamesWhereAndWhat)
   const Case cases[] = {
     {Mesh_file_format::Off, "", "the file is empty"},
     {Mesh_file_format::Off, "OFF\n2000000000 1 0\n", "more than this reader takes"},
-    {Mesh_file_format::Off, "OFF\n100000 1 0\n0 0 0\n", "line 2: the header announces 100000 vertices but only 6 bytes follow"},
-    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "line 6: face 0: vertex index 3 is out of range"},
+    {Mesh_file_format::Off, "OFF\n100000 1 0\n0 0 0\n",
+     "line 2: the header announces 100000 vertices but only 6 bytes follow"},
+    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+     "line 6: face 0: vertex index 3 is out of range"},
     {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "vertex index -1 is out of range"},
-    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000 0 1 2\n", "announces 1000000000 corners but the file has only 3 vertices"},
-    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "line 4: vertex 1 has a non-finite coordinate 'nan'"},
+    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000 0 1 2\n",
+     "announces 1000000000 corners but the file has only 3 vertices"},
+    {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n",
+     "line 4: vertex 1 has a non-finite coordinate 'nan'"},
     {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n# a long comment\n", "the file ends after 2 of the 3 vertices"},
     {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n", "face 0 (line 6) uses vertex 1 twice"},
-    {Mesh_file_format::Off, "STOFF\n3 1 0\n0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n", "line 3: vertex 0 has 3 numbers; this OFF variant has 5"},
+    {Mesh_file_format::Off, "STOFF\n3 1 0\n0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n",
+     "line 3: vertex 0 has 3 numbers; this OFF variant has 5"},
     {Mesh_file_format::Off, "nOFF\n3\n", "nOFF"},
     {Mesh_file_format::Off, "OFF BINARY\n", "binary OFF is not supported"},
     {Mesh_file_format::Off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n",
      "line 7: the file goes on after the 1 faces its header announces"},
     {Mesh_file_format::Off, "ply\nformat ascii 1.0\n", "looks like PLY, not OFF"},
-    {Mesh_file_format::Obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "line 4: face 0: vertex index 0 (OBJ indices start at 1)"},
+    {Mesh_file_format::Obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n",
+     "line 4: face 0: vertex index 0 (OBJ indices start at 1)"},
     {Mesh_file_format::Obj, "v 0 0 0\nf -1 -2 -3\n", "relative vertex index -2 reaches before the first vertex"},
     {Mesh_file_format::Obj, "v 0 0 inf\n", "non-finite"},
     {Mesh_file_format::Obj, "OFF\n3 1 0\n", "looks like OFF, not OBJ"},
     {Mesh_file_format::Ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n", "no 'end_header'"},
-    {Mesh_file_format::Ply, "ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\n"
-                            "property float z\nend_header\n0 0 0\n", "the header announces 1000000 'vertex' elements"},
-    {Mesh_file_format::Ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "line 13: face 0: vertex index 7 is out of range"},
+    {Mesh_file_format::Ply,
+     "ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\n"
+     "property float z\nend_header\n0 0 0\n",
+     "the header announces 1000000 'vertex' elements"},
+    {Mesh_file_format::Ply,
+     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+     "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
+     "line 13: face 0: vertex index 7 is out of range"},
     {Mesh_file_format::Stl, "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendloop\nendfacet\nendsolid\n",
      "line 2: the facet has 1 vertices"},
     {Mesh_file_format::Stl, "hello", "too short for a binary STL"},
@@ -324,7 +335,8 @@ TEST(ReadTriangleMesh, WhatCannotBeRepairedIsRefusedWithItsReason)
 }
 
 /// An OFF text of `points` and `faces`, coordinates written to every digit.
-std::string off_text(const std::vector<std::array<double, 3>>& points, const std::vector<std::vector<std::size_t>>& faces)
+std::string off_text(const std::vector<std::array<double, 3>>& points,
+                     const std::vector<std::vector<std::size_t>>& faces)
 {
   std::ostringstream s;
   s.imbue(std::locale::classic());
@@ -431,8 +443,9 @@ TEST(ReadTriangleMesh, NonOrientableSurfacesAndFacesListedTwiceAreRefusedByName)
     faces.push_back({i0, j1, i1});
   }
   EXPECT_FALSE(mesh_of(off_text(points, faces), mesh, report));
-  EXPECT_NE(report.message.find("against any orientation the faces around them can take: the surface is not orientable"),
-            std::string::npos)
+  EXPECT_NE(
+    report.message.find("against any orientation the faces around them can take: the surface is not orientable"),
+    std::string::npos)
     << report.message;
   EXPECT_EQ(num_faces(mesh), 0u);
   // The same triangle twice, either way round inside a disk.
@@ -570,7 +583,8 @@ TEST(LibraryEntryPoints, NotRunBeforeTheFirstRunAndEmptyMeshes)
   auto uv = empty.add_property_map<Mesh::Vertex_index, Kernel::Point_2>("v:uv").first;
   auto done = empty.add_property_map<Mesh::Vertex_index, bool>("v:done").first;
   ICM::Inverse_curvature_map_parameterizer_3<Mesh> p;
-  EXPECT_EQ(p.parameterize(empty, Mesh::null_halfedge(), uv, get(CGAL::vertex_index, empty), done), SMP::ERROR_EMPTY_MESH);
+  EXPECT_EQ(p.parameterize(empty, Mesh::null_halfedge(), uv, get(CGAL::vertex_index, empty), done),
+            SMP::ERROR_EMPTY_MESH);
   EXPECT_EQ(p.report().status, SMP::ERROR_EMPTY_MESH);
   EXPECT_STREQ(ICM::error_message(p.report().status), "Input mesh is empty");
   auto corner_uv = empty.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
@@ -632,7 +646,8 @@ TEST(ScaleFree, IndexAndUvsDoNotDependOnTheMeshsUnits)
     Mesh mesh = scaled_nefertiti(scale);
     ICM::internal::Mesh_index index;
     std::vector<Mesh::Vertex_index> vertices;
-    ASSERT_TRUE(ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices).ok());
+    ASSERT_TRUE(
+      ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices).ok());
     if(unit_points.empty())
     {
       unit_points = index.points;
@@ -650,7 +665,8 @@ TEST(ScaleFree, IndexAndUvsDoNotDependOnTheMeshsUnits)
     for(Mesh::Halfedge_index h : halfedges(mesh))
       if(is_border(h, mesh))
         bhd = h;
-    ASSERT_EQ(SMP::parameterize(mesh, parameterizer, bhd, uv), SMP::OK) << scale << ": " << parameterizer.report().message;
+    ASSERT_EQ(SMP::parameterize(mesh, parameterizer, bhd, uv), SMP::OK)
+      << scale << ": " << parameterizer.report().message;
     std::vector<Kernel::Point_2> uvs;
     for(Mesh::Vertex_index v : CGAL::vertices(mesh))
       uvs.push_back(get(uv, v));
@@ -660,7 +676,8 @@ TEST(ScaleFree, IndexAndUvsDoNotDependOnTheMeshsUnits)
     for(std::size_t i = 0; i < uvs.size(); ++i)
     {
       extent = std::max({extent, std::abs(unit_uvs[i].x()), std::abs(unit_uvs[i].y())});
-      worst = std::max({worst, std::abs(uvs[i].x() / scale - unit_uvs[i].x()), std::abs(uvs[i].y() / scale - unit_uvs[i].y())});
+      worst = std::max(
+        {worst, std::abs(uvs[i].x() / scale - unit_uvs[i].x()), std::abs(uvs[i].y() / scale - unit_uvs[i].y())});
     }
     EXPECT_LT(worst, 1e-9 * extent) << "scale " << scale;
   }

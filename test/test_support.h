@@ -28,7 +28,7 @@
 #include <system_error>
 
 #ifndef _WIN32
-#  include <unistd.h>
+#include <unistd.h>
 #endif
 
 namespace icm_test {
@@ -36,10 +36,19 @@ namespace icm_test {
 namespace fs = std::filesystem;
 
 /// A mesh of `examples/data`.
-inline std::string data_path(const std::string& name) { return std::string(ICM_TEST_DATA_DIR) + "/" + name; }
+inline std::string data_path(const std::string& name)
+{
+  return std::string(ICM_TEST_DATA_DIR) + "/" + name;
+}
 /// A mesh of `../shared/data/meshes`; tests that need it skip when it is missing.
-inline std::string shared_path(const std::string& name) { return std::string(ICM_SHARED_MESH_DIR) + "/" + name; }
-inline bool shared_dir_exists() { return fs::is_directory(ICM_SHARED_MESH_DIR); }
+inline std::string shared_path(const std::string& name)
+{
+  return std::string(ICM_SHARED_MESH_DIR) + "/" + name;
+}
+inline bool shared_dir_exists()
+{
+  return fs::is_directory(ICM_SHARED_MESH_DIR);
+}
 
 /// A typed test's name from its metric's `name` ("intrinsic-delaunay" -> "intrinsic_delaunay"):
 /// gtest reads '-' in a filter as "except", so ctest's filter of a name with a '-' would
@@ -86,7 +95,10 @@ inline ICM::internal::Mesh_index index_of(const std::string& path)
 /// A planar grid of equilateral triangles: every circle packing with tangent circles of
 /// radius l/2 reproduces it exactly.
 /// The mesh of a bundled data file, indexed.
-inline ICM::internal::Mesh_index index_file(const std::string& name) { return index_of(data_path(name)); }
+inline ICM::internal::Mesh_index index_file(const std::string& name)
+{
+  return index_of(data_path(name));
+}
 
 inline ICM::internal::Mesh_index equilateral_grid(int n)
 {
@@ -162,8 +174,8 @@ inline Eigen::MatrixXd dense_laplacian(const ICM::internal::Mesh_index& index, c
 /// Largest relative difference, over every `stride`-th vertex, between column j of `delta`
 /// and the central difference of the curvature map K at `u` in u_j.
 template <class Curvature>
-double jacobian_finite_difference_error(Curvature& curvature, const Eigen::VectorXd& u,
-                                        const Eigen::MatrixXd& delta, int stride)
+double jacobian_finite_difference_error(Curvature& curvature, const Eigen::VectorXd& u, const Eigen::MatrixXd& delta,
+                                        int stride)
 {
   const double h = 1e-6;
   double worst = 0;
@@ -204,9 +216,8 @@ public:
   {
     static std::atomic<int> counter{0};
     const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::path(testing::TempDir()) /
-            (prefix + "_" + std::to_string(static_cast<long>(::getpid())) + "_" +
-             std::string(info ? info->name() : "x") + "_" + std::to_string(counter++));
+    path_ = fs::path(testing::TempDir()) / (prefix + "_" + std::to_string(static_cast<long>(::getpid())) + "_" +
+                                            std::string(info ? info->name() : "x") + "_" + std::to_string(counter++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

@@ -54,15 +54,14 @@ struct Result
 /// sides, every corner with a finite UV.
 template <class Energy = CGAL::Default>
 Result run(Mesh& mesh, const std::string& what, const ICM::Surface_parameterization_options& options = {},
-           const std::map<Mesh::Vertex_index, double>& cones = {},
-           const std::vector<Mesh::Edge_index>& user_seams = {},
+           const std::map<Mesh::Vertex_index, double>& cones = {}, const std::vector<Mesh::Edge_index>& user_seams = {},
            const typename CGAL::Default::Get<Energy, ICM::Curvature_entropy>::type& energy =
              typename CGAL::Default::Get<Energy, ICM::Curvature_entropy>::type())
 {
   auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:test_uv", Point_2(NAN, NAN)).first;
   Result r;
-  r.report = ICM::parameterize<CGAL::Default, CGAL::Default, Energy>(mesh, uv, options, cones, &r.seams, user_seams,
-                                                                     energy);
+  r.report =
+    ICM::parameterize<CGAL::Default, CGAL::Default, Energy>(mesh, uv, options, cones, &r.seams, user_seams, energy);
   EXPECT_EQ(r.report.status, CGAL::Surface_mesh_parameterization::OK) << what << ": " << r.report.message;
   if(r.report.status != CGAL::Surface_mesh_parameterization::OK)
     return r;

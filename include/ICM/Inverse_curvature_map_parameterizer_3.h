@@ -95,7 +95,8 @@ public:
   static_assert(internal::Is_sparse_solver<Solver>::value,
                 "Inverse_curvature_map_parameterizer_3: the third template argument must be an Eigen sparse "
                 "Cholesky, a CGAL solver traits or CGAL::Default");
-  static_assert(!internal::Is_border_parameterizer<Metric_>::value || std::is_same<BorderCondition, CGAL::Default>::value,
+  static_assert(!internal::Is_border_parameterizer<Metric_>::value ||
+                  std::is_same<BorderCondition, CGAL::Default>::value,
                 "Inverse_curvature_map_parameterizer_3: a CGAL border parameterizer as second template argument "
                 "is the border condition; do not give a fifth one as well");
   /// Whether the energy needs the optimizer (the entropy's minimum is the Dirichlet problem).
@@ -105,9 +106,9 @@ public:
 
   /// A parameterizer with these options (doc/parameterizer.md) minimising `energy` under
   /// the border condition `border` (doc/border_conditions.md).
-  explicit Inverse_curvature_map_parameterizer_3(
-    const Parameterization_options& options = Parameterization_options(), const Energy& energy = Energy(),
-    const Border_condition& border = Border_condition())
+  explicit Inverse_curvature_map_parameterizer_3(const Parameterization_options& options = Parameterization_options(),
+                                                 const Energy& energy = Energy(),
+                                                 const Border_condition& border = Border_condition())
     : options_(options), energy_(energy), border_(border), report_(std::make_shared<Parameterization_report>())
   {}
 
@@ -135,8 +136,8 @@ public:
   /// index map is not needed (the mesh is indexed once, internally) and `vpmap` is set to
   /// true for every vertex that receives a UV.
   template <class VertexUVMap, class VertexIndexMap, class VertexParameterizedMap>
-  Error_code parameterize(TriangleMesh& mesh, halfedge_descriptor bhd, VertexUVMap uvmap,
-                          VertexIndexMap vimap, VertexParameterizedMap vpmap)
+  Error_code parameterize(TriangleMesh& mesh, halfedge_descriptor bhd, VertexUVMap uvmap, VertexIndexMap vimap,
+                          VertexParameterizedMap vpmap)
   {
     using namespace CGAL::Surface_mesh_parameterization;
     Run run(*report_);
@@ -157,8 +158,7 @@ public:
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
     const Status indexed =
-      internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh),
-                           index, vertices);
+      internal::index_mesh(mesh, face(opposite(bhd, mesh), mesh), get(CGAL::vertex_point, mesh), index, vertices);
     run.report_topology(index);
     run.report.energy = energy_name<Energy>();
     run.report.border_condition = border_.name();
@@ -201,8 +201,9 @@ private:
     constexpr bool several_loops = std::is_same<Border_condition, Circle_domain>::value;
     Border_target refused;
     if(index.genus() != 0)
-      refused.status = Status::failure(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk" +
-                                                                    (several_loops ? " (" + name + " needs genus 0)" : ""));
+      refused.status =
+        Status::failure(ERROR_NO_TOPOLOGICAL_DISC, internal::describe_topology(index) + ": not a disk" +
+                                                     (several_loops ? " (" + name + " needs genus 0)" : ""));
     else if(!several_loops && !index.is_disk())
       refused.status = Status::failure(ERROR_NO_TOPOLOGICAL_DISC,
                                        internal::describe_topology(index) + ": not a disk (" + name +

@@ -73,7 +73,7 @@ inline Status check_options(const std::optional<Newton_options>& options, const 
 /// The paper's curvature diffusion (Algorithm 5), kept to validate Newton's optimum.
 struct Diffusion_options
 {
-  double tolerance = 1e-10;     ///< on max_N |k_i|
+  double tolerance = 1e-10; ///< on max_N |k_i|
   int max_iterations = 2000000;
   /// Fraction of the explicit stability bound 1 / max_i Delta_ii (Gershgorin: Delta's
   /// largest eigenvalue is at most twice its largest diagonal entry).
@@ -201,14 +201,14 @@ StageOptions with_newton(StageOptions stage, const Newton_options& parent)
 /// How the optimal metric is computed.
 enum class Optimum_method
 {
-  Newton,              ///< Dirichlet problem u_S = u0_S, K(u)_N = 0 by Newton (default)
-  Curvature_diffusion  ///< the paper's Algorithm 5 (slow; for validation)
+  Newton,             ///< Dirichlet problem u_S = u0_S, K(u)_N = 0 by Newton (default)
+  Curvature_diffusion ///< the paper's Algorithm 5 (slow; for validation)
 };
 
 /// How a flat metric is laid out in the plane (layout/Layout.h).
 enum class Layout_method
 {
-  Automatic,   ///< propagation below `harmonic_layout_min_faces` faces, harmonic above
+  Automatic, ///< propagation below `harmonic_layout_min_faces` faces, harmonic above
   Propagation,
   Harmonic
 };
@@ -244,7 +244,7 @@ inline Status check_options(const Chart_options& options)
 /// Options of `Inverse_curvature_map_parameterizer_3`.
 struct Parameterization_options : Chart_options
 {
-  Diffusion_options diffusion;  ///< used with `Optimum_method::Curvature_diffusion`
+  Diffusion_options diffusion; ///< used with `Optimum_method::Curvature_diffusion`
   Optimum_method optimum = Optimum_method::Newton;
   Layout_method layout = Layout_method::Automatic;
   /// `Automatic` switches to the harmonic layout here. The paper switches at 30k faces;

@@ -24,14 +24,14 @@ namespace ICM {
 struct Curvature_space_report
 {
   bool converged = false;
-  int iterations = 0;         ///< accepted steps
-  int evaluations = 0;        ///< metrics measured (line search trials included)
-  int newton_iterations = 0;  ///< Newton steps over all solves (each one factorization)
-  int factorizations = 0;     ///< other factorizations (the gradient's solves)
+  int iterations = 0;        ///< accepted steps
+  int evaluations = 0;       ///< metrics measured (line search trials included)
+  int newton_iterations = 0; ///< Newton steps over all solves (each one factorization)
+  int factorizations = 0;    ///< other factorizations (the gradient's solves)
   /// Times a frozen triangulation was flipped to be Delaunay at the current metric
   /// (`Curvature_space_options::frozen_steps`).
   int refreshes = 0;
-  double initial_energy = 0, final_energy = 0;  ///< NaN for an energy without a value
+  double initial_energy = 0, final_energy = 0; ///< NaN for an energy without a value
   /// Final stopping figure: the relative reduced gradient, or Theorem 3.2's spread.
   double final_residual = 0;
   std::vector<double> energy_history;
@@ -42,12 +42,12 @@ struct Curvature_space_report
 /// What steps 5 and 7 did on one chart: its optimum, its layout and their checks.
 struct Chart_solve_report
 {
-  std::string metric;          ///< the metric of the result ("intrinsic-delaunay", ...)
-  std::string metric_summary;  ///< what that metric changed of the mesh, in words
+  std::string metric;         ///< the metric of the result ("intrinsic-delaunay", ...)
+  std::string metric_summary; ///< what that metric changed of the mesh, in words
   /// Empty, or why the requested metric could not reach the optimum and the circle packing
   /// was used instead ("vertex-scaling: the Newton line search stalled ...").
   std::string fallback_reason;
-  int newton_iterations = 0;  ///< of the metric that succeeded, the energy's and the cones' not counted
+  int newton_iterations = 0; ///< of the metric that succeeded, the energy's and the cones' not counted
   /// max |k_target - k| over the free vertices per Newton iteration of the entropy optimum.
   std::vector<double> residual_history;
   /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
@@ -63,8 +63,8 @@ struct Chart_solve_report
   /// max |k| over the non-singular vertices; for a prescribed border, max |k - target| over
   /// all vertices.
   double max_curvature_error = 0;
-  std::string layout;                   ///< "propagation" or "harmonic"
-  double max_layout_length_error = 0;   ///< UV edge length vs metric, see `Layout_check`
+  std::string layout;                 ///< "propagation" or "harmonic"
+  double max_layout_length_error = 0; ///< UV edge length vs metric, see `Layout_check`
   int flipped_faces = 0;
   /// A prescribed border with straight sides (a square): the faces whose three corners are
   /// held on one side (`internal::straight_stretches`), laid out as segments whatever the
@@ -79,7 +79,7 @@ struct Chart_solve_report
   /// the disk parameterizer (one UV per vertex leaves no cut to take the overlap apart);
   /// `ICM::parameterize` cuts such a chart into pieces (`remove_overlaps`).
   int overlapping_border_edges = 0;
-  double seam_length_error = 0;  ///< max relative difference of a seam's two sides
+  double seam_length_error = 0; ///< max relative difference of a seam's two sides
   /// Circle borders: the outer iterations u <- K^{-1}(T(u)), and the largest relative
   /// distance of a border vertex's UV from its loop's fitted circle (`max_circle_deviation`).
   int border_iterations = 0;
@@ -93,9 +93,9 @@ struct Parameterization_report : Chart_solve_report
 {
   /// `NOT_RUN` until the first `parameterize()`.
   CGAL::Surface_mesh_parameterization::Error_code status = NOT_RUN;
-  std::string message = "not run";  ///< empty on success, else the human reason
+  std::string message = "not run"; ///< empty on success, else the human reason
   int vertices = 0, faces = 0, edges = 0, boundary_loops = 0, genus = 0, euler_characteristic = 0;
-  std::string energy;  ///< the energy minimised ("entropy", "log-area", ...)
+  std::string energy; ///< the energy minimised ("entropy", "log-area", ...)
   /// The border condition's name ("free", "prescribed-curvature", "square", "circle",
   /// "polygon", "circle-domain"; doc/border_conditions.md).
   std::string border_condition;
@@ -119,10 +119,9 @@ struct Surface_parameterization_report
 {
   /// `NOT_RUN` until filled by `ICM::parameterize`.
   CGAL::Surface_mesh_parameterization::Error_code status = NOT_RUN;
-  std::string message = "not run";     ///< empty on success, else the reason
-  std::vector<Chart_report> charts;    ///< one per connected component
-  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
-         seconds_total = 0;
+  std::string message = "not run";  ///< empty on success, else the reason
+  std::vector<Chart_report> charts; ///< one per connected component
+  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_total = 0;
 };
 
 /// An energy's figures over every component of a report: the optimizer's steps summed, E at

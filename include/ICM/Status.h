@@ -29,16 +29,26 @@ inline const char* error_message(Error_code code)
   using namespace CGAL::Surface_mesh_parameterization;
   switch(code)
   {
-  case OK: return "Success";
-  case ERROR_EMPTY_MESH: return "Input mesh is empty";
-  case ERROR_NON_TRIANGULAR_MESH: return "Input mesh is not triangular";
-  case ERROR_NO_TOPOLOGICAL_DISC: return "Input mesh is not a topological disc";
-  case ERROR_NO_TOPOLOGICAL_BALL: return "Input mesh is not a topological ball";
-  case ERROR_BORDER_TOO_SHORT: return "This border parameterization requires a longer border";
-  case ERROR_NON_CONVEX_BORDER: return "This parameterization method requires a convex border";
-  case ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "Cannot solve linear system";
-  case ERROR_NO_1_TO_1_MAPPING: return "Parameterization failed: no one-to-one mapping";
-  case ERROR_WRONG_PARAMETER: return "Invalid input";
+  case OK:
+    return "Success";
+  case ERROR_EMPTY_MESH:
+    return "Input mesh is empty";
+  case ERROR_NON_TRIANGULAR_MESH:
+    return "Input mesh is not triangular";
+  case ERROR_NO_TOPOLOGICAL_DISC:
+    return "Input mesh is not a topological disc";
+  case ERROR_NO_TOPOLOGICAL_BALL:
+    return "Input mesh is not a topological ball";
+  case ERROR_BORDER_TOO_SHORT:
+    return "This border parameterization requires a longer border";
+  case ERROR_NON_CONVEX_BORDER:
+    return "This parameterization method requires a convex border";
+  case ERROR_CANNOT_SOLVE_LINEAR_SYSTEM:
+    return "Cannot solve linear system";
+  case ERROR_NO_1_TO_1_MAPPING:
+    return "Parameterization failed: no one-to-one mapping";
+  case ERROR_WRONG_PARAMETER:
+    return "Invalid input";
   }
   if(code == NOT_RUN)
     return "not run";

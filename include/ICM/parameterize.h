@@ -77,14 +77,14 @@ namespace ICM {
 ///          (doc/report.md)
 template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class Energy_ = CGAL::Default,
           class TriangleMesh, class HalfedgeUVMap>
-Surface_parameterization_report parameterize(
-  const TriangleMesh& mesh, HalfedgeUVMap uv_map,
-  const Surface_parameterization_options& options = Surface_parameterization_options(),
-  const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones = {},
-  std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr,
-  const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams = {},
-  const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
-    typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
+Surface_parameterization_report
+parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
+             const Surface_parameterization_options& options = Surface_parameterization_options(),
+             const std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double>& user_cones = {},
+             std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>* seam_edges = nullptr,
+             const std::vector<typename boost::graph_traits<TriangleMesh>::edge_descriptor>& user_seams = {},
+             const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
+               typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using Metric = typename CGAL::Default::Get<Metric_, Default_metric>::type;
@@ -140,8 +140,8 @@ Surface_parameterization_report parameterize(
     faces_done += static_cast<double>(component_faces[c]);
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
-    const Status indexed = internal::index_mesh(
-      mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices, &chart_faces[c], &normalisation);
+    const Status indexed = internal::index_mesh(mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices,
+                                                &chart_faces[c], &normalisation);
     Chart_report chart;
     chart.vertices = index.number_of_vertices();
     chart.faces = index.number_of_faces();
@@ -153,19 +153,19 @@ Surface_parameterization_report parameterize(
     std::vector<double> prescribed;
     internal::component_cones_and_seams(mesh, index, vertices, user_cones, is_user_seam, !user_seams.empty(),
                                         is_user_cone, prescribed, component_seams);
-    const Status failure = internal::parameterize_component<Metric, Solver>(
-      index, is_user_cone, prescribed, component_seams, options, report, chart, cuts[c], chart_uvs[c], energy,
-      progress);
+    const Status failure =
+      internal::parameterize_component<Metric, Solver>(index, is_user_cone, prescribed, component_seams, options,
+                                                       report, chart, cuts[c], chart_uvs[c], energy, progress);
     report.charts.push_back(chart);
     if(!failure.ok())
-      return finish(failure.code,
-                    "component " + std::to_string(c) + " (" + std::to_string(chart.vertices) +
-                      " vertices, genus " + std::to_string(chart.genus) + ", " +
-                      std::to_string(chart.boundary_loops) + " boundary loops): " + failure.message);
+      return finish(failure.code, "component " + std::to_string(c) + " (" + std::to_string(chart.vertices) +
+                                    " vertices, genus " + std::to_string(chart.genus) + ", " +
+                                    std::to_string(chart.boundary_loops) + " boundary loops): " + failure.message);
     if(seam_edges)
       for(int e = 0; e < index.number_of_edges(); ++e)
         if(cuts[c].disk_edges[e][1] >= 0)
-          seam_edges->push_back(edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
+          seam_edges->push_back(
+            edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
   }
 
   internal::pack_and_write_charts(mesh, chart_faces, cuts, chart_uvs, normalisation, uv_map);
@@ -191,11 +191,11 @@ Surface_parameterization_report parameterize(
 /// \returns as the overload above
 template <class Metric_ = CGAL::Default, class SparseSolver = CGAL::Default, class Energy_ = CGAL::Default,
           class TriangleMesh, class SeamEdgeMap, class SeamVertexMap, class VertexUVMap>
-Surface_parameterization_report parameterize(
-  const CGAL::Seam_mesh<TriangleMesh, SeamEdgeMap, SeamVertexMap>& seam_mesh, VertexUVMap uv_map,
-  const Surface_parameterization_options& options = Surface_parameterization_options(),
-  const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
-    typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
+Surface_parameterization_report
+parameterize(const CGAL::Seam_mesh<TriangleMesh, SeamEdgeMap, SeamVertexMap>& seam_mesh, VertexUVMap uv_map,
+             const Surface_parameterization_options& options = Surface_parameterization_options(),
+             const typename CGAL::Default::Get<Energy_, Curvature_entropy>::type& energy =
+               typename CGAL::Default::Get<Energy_, Curvature_entropy>::type())
 {
   using Uv_point = typename boost::property_traits<VertexUVMap>::value_type;
   const TriangleMesh& surface = seam_mesh.mesh();

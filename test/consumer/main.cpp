@@ -75,8 +75,9 @@ int main(int argc, char** argv)
   int problems = parameterize_and_check<ICM::Inverse_curvature_map_parameterizer_3<Mesh>>(mesh, "default");
 #ifdef ICM_HAS_CHOLMOD
   std::cout << "CHOLMOD: yes\n";
-  problems += parameterize_and_check<
-    ICM::Inverse_curvature_map_parameterizer_3<Mesh, CGAL::Default, ICM::Cholmod_solver>>(mesh, "cholmod");
+  problems +=
+    parameterize_and_check<ICM::Inverse_curvature_map_parameterizer_3<Mesh, CGAL::Default, ICM::Cholmod_solver>>(
+      mesh, "cholmod");
 #else
   std::cout << "CHOLMOD: no\n";
 #endif

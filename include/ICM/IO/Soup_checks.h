@@ -29,8 +29,7 @@ namespace reading {
 /// Drops the points of no polygon, keeping the others in their order (CGAL's
 /// `remove_isolated_points_in_polygon_soup` moves the last points into the holes, which
 /// would renumber vertices the user may refer to). Returns the old index of each point kept.
-inline std::vector<std::size_t> remove_isolated_points_in_order(Polygon_soup& soup,
-                                                                std::vector<std::size_t>& isolated)
+inline std::vector<std::size_t> remove_isolated_points_in_order(Polygon_soup& soup, std::vector<std::size_t>& isolated)
 {
   std::vector<char> used(soup.points.size(), 0);
   for(const auto& polygon : soup.polygons)
@@ -158,7 +157,7 @@ inline bool same_corners(std::vector<std::size_t> a, std::vector<std::size_t> b)
 struct Polygon_side
 {
   std::size_t low, high, polygon, corner; // corner: where the side starts in its polygon
-  bool forward;                            // low -> high in the polygon's order
+  bool forward;                           // low -> high in the polygon's order
   bool operator<(const Polygon_side& o) const
   {
     return low != o.low ? low < o.low : high != o.high ? high < o.high : polygon < o.polygon;
@@ -236,11 +235,10 @@ inline Edge_check check_edges(const Polygon_soup& soup, const std::vector<std::s
       ++t;
     if(t - s > 2)
     {
-      result.refusal = edge_name(sides[s].low, sides[s].high, file_vertex) + " is shared by " +
-                       std::to_string(t - s) + " faces (" + soup.describe_polygon(sides[s].polygon) + ", " +
-                       soup.describe_polygon(sides[s + 1].polygon) + ", " +
-                       soup.describe_polygon(sides[s + 2].polygon) + (t - s > 3 ? ", ..." : "") +
-                       "): a non-manifold edge";
+      result.refusal =
+        edge_name(sides[s].low, sides[s].high, file_vertex) + " is shared by " + std::to_string(t - s) + " faces (" +
+        soup.describe_polygon(sides[s].polygon) + ", " + soup.describe_polygon(sides[s + 1].polygon) + ", " +
+        soup.describe_polygon(sides[s + 2].polygon) + (t - s > 3 ? ", ..." : "") + "): a non-manifold edge";
       return result;
     }
     if(t - s == 2)
@@ -294,7 +292,8 @@ inline std::string check_extent(const Polygon_soup& soup)
     }
     if(!std::isfinite(high - low))
       return std::string("the mesh's extent along ") + "xyz"[k] + ", from " + short_number(low) + " to " +
-             short_number(high) + ", is beyond the range of a double (the difference of two coordinates "
+             short_number(high) +
+             ", is beyond the range of a double (the difference of two coordinates "
              "overflows): scale the mesh down";
   }
   return {};
@@ -409,8 +408,8 @@ inline std::vector<std::array<double, 2>> corners_on_best_fit_plane(const Polygo
     c /= length;
   // Two unit vectors across the normal: u along the axis the normal leans on least.
   const int axis = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2]) ? 0
-                   : std::abs(n[1]) <= std::abs(n[2])                                  ? 1
-                                                                                       : 2;
+                   : std::abs(n[1]) <= std::abs(n[2])                                   ? 1
+                                                                                        : 2;
   std::array<double, 3> u{0, 0, 0};
   u[axis] = 1;
   const double along = u[axis] * n[axis];

@@ -90,10 +90,14 @@ inline const char* format_name(Mesh_file_format format)
 {
   switch(format)
   {
-  case Mesh_file_format::Off: return "OFF";
-  case Mesh_file_format::Obj: return "OBJ";
-  case Mesh_file_format::Ply: return "PLY";
-  case Mesh_file_format::Stl: return "STL";
+  case Mesh_file_format::Off:
+    return "OFF";
+  case Mesh_file_format::Obj:
+    return "OBJ";
+  case Mesh_file_format::Ply:
+    return "PLY";
+  case Mesh_file_format::Stl:
+    return "STL";
   }
   return "?";
 }
@@ -115,14 +119,20 @@ struct Soup_error
   std::string message;
 };
 
-[[noreturn]] inline void refuse(const std::string& message) { throw Soup_error{message}; }
+[[noreturn]] inline void refuse(const std::string& message)
+{
+  throw Soup_error{message};
+}
 
 [[noreturn]] inline void refuse_at(std::size_t line, const std::string& message)
 {
   refuse("line " + std::to_string(line) + ": " + message);
 }
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool is_space(char c)
+{
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 /// A token as it may be quoted in a message: at most 40 characters, control bytes as '?'.
 inline std::string quoted(std::string_view token)
@@ -244,13 +254,11 @@ inline double coordinate(std::string_view token, std::size_t line, std::size_t v
 }
 
 /// A count in a header: a non-negative integer not above `limit`.
-inline std::size_t header_count(std::string_view token, std::size_t line, const char* what,
-                                std::size_t limit)
+inline std::size_t header_count(std::string_view token, std::size_t line, const char* what, std::size_t limit)
 {
   long long n = 0;
   if(!parse_integer(token, n) || n < 0)
-    refuse_at(line, std::string("the ") + what + " count " + quoted(token) +
-                      " is not a non-negative integer");
+    refuse_at(line, std::string("the ") + what + " count " + quoted(token) + " is not a non-negative integer");
   if(static_cast<unsigned long long>(n) > limit)
     refuse_at(line, std::string("the header announces ") + std::to_string(n) + " " + what +
                       ", more than this reader takes (" + std::to_string(limit) + ")");
@@ -259,14 +267,14 @@ inline std::size_t header_count(std::string_view token, std::size_t line, const 
 
 /// Refuses a header whose elements cannot fit in what follows it, before anything is
 /// allocated for them: `count` elements of at least `bytes_each` bytes in `available`.
-inline void check_fits(std::size_t count, std::size_t bytes_each, std::size_t available,
-                       std::size_t line, const std::string& what)
+inline void check_fits(std::size_t count, std::size_t bytes_each, std::size_t available, std::size_t line,
+                       const std::string& what)
 {
   // One byte of slack: the last element needs no separator after it.
   if(bytes_each > 0 && count > (available + 1) / bytes_each)
-    refuse_at(line, "the header announces " + std::to_string(count) + " " + what +
-                      " but only " + std::to_string(available) + " bytes follow (at least " +
-                      std::to_string(bytes_each) + " per element): the count is wrong or the file "
+    refuse_at(line, "the header announces " + std::to_string(count) + " " + what + " but only " +
+                      std::to_string(available) + " bytes follow (at least " + std::to_string(bytes_each) +
+                      " per element): the count is wrong or the file "
                       "is truncated");
 }
 
@@ -285,12 +293,11 @@ inline void check_polygon(const std::vector<std::size_t>& polygon, std::size_t n
                           const Polygon_soup& soup, std::size_t p)
 {
   if(polygon.size() < 3)
-    refuse(soup.describe_polygon(p) + " has " + std::to_string(polygon.size()) +
-           " corner(s); a face needs at least 3");
+    refuse(soup.describe_polygon(p) + " has " + std::to_string(polygon.size()) + " corner(s); a face needs at least 3");
   for(std::size_t i : polygon)
     if(i >= number_of_points)
-      refuse(soup.describe_polygon(p) + ": vertex index " + std::to_string(i) +
-             " is out of range (the file has " + std::to_string(number_of_points) + " vertices)");
+      refuse(soup.describe_polygon(p) + ": vertex index " + std::to_string(i) + " is out of range (the file has " +
+             std::to_string(number_of_points) + " vertices)");
   // Small polygons by a quadratic scan; large ones sorted, so that a face of a million
   // corners costs n log n and not n^2.
   if(polygon.size() <= 16)
@@ -307,8 +314,7 @@ inline void check_polygon(const std::vector<std::size_t>& polygon, std::size_t n
     std::sort(sorted.begin(), sorted.end());
     const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
     if(twice != sorted.end())
-      refuse(soup.describe_polygon(p) + " uses vertex " + std::to_string(*twice) +
-             " twice (a degenerate face)");
+      refuse(soup.describe_polygon(p) + " uses vertex " + std::to_string(*twice) + " twice (a degenerate face)");
   }
 }
 

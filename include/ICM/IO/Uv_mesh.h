@@ -42,10 +42,10 @@ namespace IO {
 /// (counterclockwise in 3D) order; both arrays have one entry per face. Indices are 0-based.
 struct Uv_mesh
 {
-  std::vector<std::array<double, 3> > positions;
-  std::vector<std::array<double, 2> > uvs;
-  std::vector<std::array<int, 3> > face_positions;
-  std::vector<std::array<int, 3> > face_uvs;
+  std::vector<std::array<double, 3>> positions;
+  std::vector<std::array<double, 2>> uvs;
+  std::vector<std::array<int, 3>> face_positions;
+  std::vector<std::array<int, 3>> face_uvs;
 
   std::size_t number_of_faces() const { return face_positions.size(); }
 };
@@ -76,9 +76,11 @@ inline std::string why_uvs_overflow(const IO::Uv_mesh& m, const std::array<doubl
   if(std::isnan(uv[0]) || std::isnan(uv[1]))
     return {};
   double extent = 0.;
-  for(int k = 0; k < 3 && !m.positions.empty(); ++k) {
+  for(int k = 0; k < 3 && !m.positions.empty(); ++k)
+  {
     double low = m.positions[0][k], high = low;
-    for(const auto& p : m.positions) {
+    for(const auto& p : m.positions)
+    {
       low = (std::min)(low, p[k]);
       high = (std::max)(high, p[k]);
     }
@@ -96,30 +98,38 @@ namespace IO {
 /// coordinate is finite. On failure fills `error` with a one-line reason and returns false.
 inline bool is_valid_uv_mesh(const Uv_mesh& m, std::string& error)
 {
-  if(m.face_positions.size() != m.face_uvs.size()) {
+  if(m.face_positions.size() != m.face_uvs.size())
+  {
     error = "the mesh has " + std::to_string(m.face_positions.size()) + " position faces but " +
             std::to_string(m.face_uvs.size()) + " UV faces";
     return false;
   }
-  for(std::size_t f = 0; f < m.face_positions.size(); ++f) {
-    for(int k = 0; k < 3; ++k) {
+  for(std::size_t f = 0; f < m.face_positions.size(); ++f)
+  {
+    for(int k = 0; k < 3; ++k)
+    {
       const int p = m.face_positions[f][k], t = m.face_uvs[f][k];
-      if(p < 0 || static_cast<std::size_t>(p) >= m.positions.size() ||
-         t < 0 || static_cast<std::size_t>(t) >= m.uvs.size()) {
+      if(p < 0 || static_cast<std::size_t>(p) >= m.positions.size() || t < 0 ||
+         static_cast<std::size_t>(t) >= m.uvs.size())
+      {
         error = "face " + std::to_string(f) + " has an index out of range";
         return false;
       }
     }
   }
-  for(std::size_t i = 0; i < m.positions.size(); ++i) {
+  for(std::size_t i = 0; i < m.positions.size(); ++i)
+  {
     const auto& p = m.positions[i];
-    if(!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+    if(!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
       error = "position " + std::to_string(i) + " is not finite";
       return false;
     }
   }
-  for(std::size_t i = 0; i < m.uvs.size(); ++i) {
-    if(!std::isfinite(m.uvs[i][0]) || !std::isfinite(m.uvs[i][1])) {
+  for(std::size_t i = 0; i < m.uvs.size(); ++i)
+  {
+    if(!std::isfinite(m.uvs[i][0]) || !std::isfinite(m.uvs[i][1]))
+    {
       error = "UV " + std::to_string(i) + " is not finite" + internal::why_uvs_overflow(m, m.uvs[i]);
       return false;
     }
@@ -146,9 +156,7 @@ inline double position_area(const Uv_mesh& m, std::size_t f)
   const auto& c = m.positions[m.face_positions[f][2]];
   const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
-                       e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
@@ -164,7 +172,8 @@ double half_extent(const Points& points)
     return 1.;
   auto low = points[0], high = points[0];
   for(const auto& p : points)
-    for(std::size_t k = 0; k < p.size(); ++k) {
+    for(std::size_t k = 0; k < p.size(); ++k)
+    {
       low[k] = (std::min)(low[k], p[k]);
       high[k] = (std::max)(high[k], p[k]);
     }
@@ -211,7 +220,8 @@ inline std::vector<double> log_area_ratios(const Uv_mesh& m)
   const std::size_t nf = m.number_of_faces();
   std::vector<double> uv_area(nf), area_3d(nf);
   double total_uv = 0., total_3d = 0.;
-  for(std::size_t f = 0; f < nf; ++f) {
+  for(std::size_t f = 0; f < nf; ++f)
+  {
     uv_area[f] = std::abs(uv_signed_area(unit, f));
     area_3d[f] = position_area(unit, f);
     total_uv += uv_area[f];
@@ -220,12 +230,11 @@ inline std::vector<double> log_area_ratios(const Uv_mesh& m)
 
   // Work with log(scale) rather than the scale itself so that layouts with tiny or huge
   // coordinates do not overflow or underflow the normalisation.
-  const double log_scale = (total_uv > 0. && total_3d > 0.)
-                               ? std::log(total_3d) - std::log(total_uv)
-                               : 0.;
+  const double log_scale = (total_uv > 0. && total_3d > 0.) ? std::log(total_3d) - std::log(total_uv) : 0.;
 
   std::vector<double> ratios(nf);
-  for(std::size_t f = 0; f < nf; ++f) {
+  for(std::size_t f = 0; f < nf; ++f)
+  {
     const bool uv_zero = !(uv_area[f] > 0.) || !(total_uv > 0.);
     const bool zero_3d = !(area_3d[f] > 0.);
     double r;
@@ -268,7 +277,8 @@ copy_positions(const TriangleMesh& mesh, IO::Uv_mesh& out)
   std::unordered_map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, int> index;
   index.reserve(num_vertices(mesh));
   out.positions.reserve(num_vertices(mesh));
-  for(auto v : vertices(mesh)) {
+  for(auto v : vertices(mesh))
+  {
     index.emplace(v, static_cast<int>(out.positions.size()));
     out.positions.push_back(to_array_3(get(vpm, v)));
   }
@@ -302,10 +312,12 @@ Uv_mesh make_uv_mesh(const TriangleMesh& mesh, VertexUVMap uvmap)
     out.uvs.push_back(internal::to_array_2(get(uvmap, v)));
 
   out.face_positions.reserve(num_faces(mesh));
-  for(face_descriptor f : faces(mesh)) {
+  for(face_descriptor f : faces(mesh))
+  {
     std::array<int, 3> corners{{0, 0, 0}};
     int k = 0;
-    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh)) {
+    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+    {
       CGAL_precondition_msg(k < 3, "make_uv_mesh() needs a triangle mesh");
       if(k < 3)
         corners[k] = index.at(target(h, mesh));
@@ -331,11 +343,13 @@ Uv_mesh make_uv_mesh_from_corners(const TriangleMesh& mesh, HalfedgeUVMap uvmap)
   Uv_mesh out;
   const std::unordered_map<vertex_descriptor, int> index = internal::copy_positions(mesh, out);
   // Per vertex, the vt indices it has so far (a handful at most: one per seam side).
-  std::vector<std::vector<int> > vts(out.positions.size());
-  for(face_descriptor f : faces(mesh)) {
+  std::vector<std::vector<int>> vts(out.positions.size());
+  for(face_descriptor f : faces(mesh))
+  {
     std::array<int, 3> p{{0, 0, 0}}, t{{0, 0, 0}};
     int k = 0;
-    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh)) {
+    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
+    {
       CGAL_precondition_msg(k < 3, "make_uv_mesh_from_corners() needs a triangle mesh");
       if(k == 3)
         break;
@@ -345,7 +359,8 @@ Uv_mesh make_uv_mesh_from_corners(const TriangleMesh& mesh, HalfedgeUVMap uvmap)
       for(int candidate : vts[v])
         if(out.uvs[candidate] == uv)
           found = candidate;
-      if(found < 0) {
+      if(found < 0)
+      {
         found = static_cast<int>(out.uvs.size());
         out.uvs.push_back(uv);
         vts[v].push_back(found);
@@ -371,8 +386,7 @@ Uv_mesh make_uv_mesh_from_corners(const TriangleMesh& mesh, HalfedgeUVMap uvmap)
 ///         (a map keyed by the underlying mesh's `halfedge_descriptor`, as in CGAL's
 ///         parameterization examples, works too: the seam vertex converts to it).
 template <class TM, class SeamEdgeMap, class SeamVertexMap, class VertexUVMap>
-Uv_mesh make_uv_mesh(const CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>& seam_mesh,
-                     VertexUVMap uvmap)
+Uv_mesh make_uv_mesh(const CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>& seam_mesh, VertexUVMap uvmap)
 {
   using Seam_mesh = CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>;
   using vertex_descriptor = typename boost::graph_traits<Seam_mesh>::vertex_descriptor;
@@ -387,19 +401,23 @@ Uv_mesh make_uv_mesh(const CGAL::Seam_mesh<TM, SeamEdgeMap, SeamVertexMap>& seam
   // Seam_mesh::vertex_descriptor is a canonical halfedge of the underlying mesh pointing to
   // the vertex; it is what target(h, seam_mesh) returns, so it is a sound hash key.
   std::unordered_map<vertex_descriptor, int> uv_index;
-  for(vertex_descriptor v : vertices(seam_mesh)) {
+  for(vertex_descriptor v : vertices(seam_mesh))
+  {
     uv_index.emplace(v, static_cast<int>(out.uvs.size()));
     out.uvs.push_back(internal::to_array_2(get(uvmap, v)));
   }
 
   out.face_positions.reserve(num_faces(tm));
   out.face_uvs.reserve(num_faces(tm));
-  for(face_descriptor f : faces(seam_mesh)) {
+  for(face_descriptor f : faces(seam_mesh))
+  {
     std::array<int, 3> p{{0, 0, 0}}, t{{0, 0, 0}};
     int k = 0;
-    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, seam_mesh), seam_mesh)) {
+    for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, seam_mesh), seam_mesh))
+    {
       CGAL_precondition_msg(k < 3, "make_uv_mesh() needs a triangle mesh");
-      if(k < 3) {
+      if(k < 3)
+      {
         // The seam halfedge wraps a halfedge of the underlying mesh with the same target.
         p[k] = position_index.at(target(h.tmhd, tm));
         t[k] = uv_index.at(target(h, seam_mesh));

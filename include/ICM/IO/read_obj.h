@@ -23,8 +23,7 @@ namespace reading {
 /// The vertex of one OBJ face corner `v`, `v/vt`, `v//vn` or `v/vt/vn`; negative indices
 /// count back from the last vertex read so far. Positive indices are checked once the
 /// whole file is read (a face may name a vertex defined after it).
-inline std::size_t obj_corner(std::string_view token, std::size_t vertices_so_far, std::size_t line,
-                              std::size_t face)
+inline std::size_t obj_corner(std::string_view token, std::size_t vertices_so_far, std::size_t line, std::size_t face)
 {
   const std::string_view v = token.substr(0, token.find('/'));
   long long index = 0;
@@ -37,8 +36,7 @@ inline std::size_t obj_corner(std::string_view token, std::size_t vertices_so_fa
     const unsigned long long back = static_cast<unsigned long long>(-(index + 1)) + 1;
     if(back > vertices_so_far)
       refuse_at(line, "face " + std::to_string(face) + ": relative vertex index " + std::to_string(index) +
-                        " reaches before the first vertex (" + std::to_string(vertices_so_far) +
-                        " vertices so far)");
+                        " reaches before the first vertex (" + std::to_string(vertices_so_far) + " vertices so far)");
     return vertices_so_far - static_cast<std::size_t>(back);
   }
   return static_cast<std::size_t>(index - 1);

@@ -107,8 +107,8 @@ inline Off_header read_off_header(Text_lines& lines, const Soup_reading_limits& 
   const std::vector<std::string_view> counts = off_count_tokens(lines, line, header.layout);
   const std::size_t count_line = lines.number();
   if(counts.size() < 2 || counts.size() > 3)
-    refuse_at(count_line, "expected the counts of vertices, faces and edges, found " +
-                            std::to_string(counts.size()) + " value(s)");
+    refuse_at(count_line,
+              "expected the counts of vertices, faces and edges, found " + std::to_string(counts.size()) + " value(s)");
   header.vertices = header_count(counts[0], count_line, "vertices", limits.max_points);
   header.faces = header_count(counts[1], count_line, "faces", limits.max_polygons);
   if(counts.size() == 3)
@@ -118,8 +118,8 @@ inline Off_header read_off_header(Text_lines& lines, const Soup_reading_limits& 
   const std::size_t vertex_bytes = 2 * header.layout.min_numbers();
   check_fits(header.vertices, vertex_bytes, lines.remaining_bytes(), count_line, "vertices");
   check_fits(header.faces, 2,
-             lines.remaining_bytes() - std::min(lines.remaining_bytes(), header.vertices * vertex_bytes),
-             count_line, "faces");
+             lines.remaining_bytes() - std::min(lines.remaining_bytes(), header.vertices * vertex_bytes), count_line,
+             "faces");
   return header;
 }
 
@@ -130,12 +130,12 @@ inline void read_off_vertex(std::string_view line, std::size_t line_number, std:
   Tokens numbers(line);
   const std::size_t n = numbers.count();
   if(n < layout.min_numbers() || n > layout.max_numbers())
-    refuse_at(line_number, "vertex " + std::to_string(v) + " has " + std::to_string(n) +
-                             " numbers; this OFF variant has " + std::to_string(layout.min_numbers()) +
-                             (layout.max_numbers() > layout.min_numbers()
-                                ? " to " + std::to_string(layout.max_numbers())
-                                : std::string()) +
-                             " per vertex line");
+    refuse_at(
+      line_number,
+      "vertex " + std::to_string(v) + " has " + std::to_string(n) + " numbers; this OFF variant has " +
+        std::to_string(layout.min_numbers()) +
+        (layout.max_numbers() > layout.min_numbers() ? " to " + std::to_string(layout.max_numbers()) : std::string()) +
+        " per vertex line");
   std::array<double, 4> x{0, 0, 0, 1};
   std::string_view t;
   for(std::size_t i = 0; numbers.next(t); ++i)
@@ -186,11 +186,11 @@ inline std::vector<std::size_t> read_off_face(std::string_view line, std::size_t
   items.next(t);
   long long size = 0;
   if(!parse_integer(t, size) || size < 0)
-    refuse_at(line_number, "face " + std::to_string(f) + ": its corner count " + quoted(t) +
-                             " is not a non-negative integer");
+    refuse_at(line_number,
+              "face " + std::to_string(f) + ": its corner count " + quoted(t) + " is not a non-negative integer");
   if(size < 3)
-    refuse_at(line_number, "face " + std::to_string(f) + " has " + std::to_string(size) +
-                             " corner(s); a face needs at least 3");
+    refuse_at(line_number,
+              "face " + std::to_string(f) + " has " + std::to_string(size) + " corner(s); a face needs at least 3");
   if(static_cast<unsigned long long>(size) > nv)
     refuse_at(line_number, "face " + std::to_string(f) + " announces " + std::to_string(size) +
                              " corners but the file has only " + std::to_string(nv) + " vertices");
@@ -216,13 +216,12 @@ inline std::vector<std::size_t> read_off_face(std::string_view line, std::size_t
   {
     double ignored = 0;
     if(!parse_double(t, ignored))
-      refuse_at(line_number, "face " + std::to_string(f) + ": " + quoted(t) +
-                               " after its corners is not a colour component");
+      refuse_at(line_number,
+                "face " + std::to_string(f) + ": " + quoted(t) + " after its corners is not a colour component");
   }
   if(extra > 4)
-    refuse_at(line_number, "face " + std::to_string(f) + " has " + std::to_string(extra) +
-                             " values after its " + std::to_string(size) +
-                             " corners (at most a colour of 4 components may follow)");
+    refuse_at(line_number, "face " + std::to_string(f) + " has " + std::to_string(extra) + " values after its " +
+                             std::to_string(size) + " corners (at most a colour of 4 components may follow)");
   return polygon;
 }
 

@@ -46,10 +46,10 @@ inline bool ply_type(std::string_view name, Ply_type& type)
     const char* b;
     Ply_type type;
   };
-  static const Entry entries[] = {{"char", "int8", {1, true, false}},     {"uchar", "uint8", {1, false, false}},
-                                  {"short", "int16", {2, true, false}},   {"ushort", "uint16", {2, false, false}},
-                                  {"int", "int32", {4, true, false}},     {"uint", "uint32", {4, false, false}},
-                                  {"float", "float32", {4, true, true}},  {"double", "float64", {8, true, true}}};
+  static const Entry entries[] = {{"char", "int8", {1, true, false}},    {"uchar", "uint8", {1, false, false}},
+                                  {"short", "int16", {2, true, false}},  {"ushort", "uint16", {2, false, false}},
+                                  {"int", "int32", {4, true, false}},    {"uint", "uint32", {4, false, false}},
+                                  {"float", "float32", {4, true, true}}, {"double", "float64", {8, true, true}}};
   for(const Entry& e : entries)
     if(name == e.a || name == e.b)
     {
@@ -62,9 +62,9 @@ inline bool ply_type(std::string_view name, Ply_type& type)
 struct Ply_property
 {
   std::string name;
-  Ply_type type;        ///< of the value, or of the items of a list
+  Ply_type type; ///< of the value, or of the items of a list
   bool is_list = false;
-  Ply_type count_type;  ///< of a list's count
+  Ply_type count_type; ///< of a list's count
 };
 
 struct Ply_element
@@ -91,8 +91,8 @@ struct Ply_value_name
   const std::string& element;
   std::size_t index;
   const std::string& property;
-  const char* part = "";        ///< " (list count)", " item " or ""
-  std::size_t item = 0;         ///< with part " item "
+  const char* part = ""; ///< " (list count)", " item " or ""
+  std::size_t item = 0;  ///< with part " item "
 
   std::string str() const
   {
@@ -391,8 +391,8 @@ inline void read_ply_list(const Ply_element& e, std::size_t i, std::size_t pi, P
 
 /// Reads element `i` of `e`: a point when `e` is the vertex element, a polygon when it is the
 /// face element, values read and dropped otherwise.
-inline void read_ply_element(const Ply_element& e, std::size_t i, Ply_encoding encoding,
-                             const Ply_soup_layout& layout, Ply_body& body, Polygon_soup& soup)
+inline void read_ply_element(const Ply_element& e, std::size_t i, Ply_encoding encoding, const Ply_soup_layout& layout,
+                             Ply_body& body, Polygon_soup& soup)
 {
   std::array<double, 3> x{};
   std::vector<std::size_t> polygon;

@@ -74,8 +74,8 @@ namespace IO {
 /// 3 or more corners, no more than the file has vertices, none named twice. STL corners at
 /// the same point are merged into one vertex (`merge_duplicate_points_in_polygon_soup`), in
 /// the order they first appear.
-inline bool read_polygon_soup(std::string_view data, Mesh_file_format format, Polygon_soup& soup,
-                              std::string& error, const Soup_reading_limits& limits = Soup_reading_limits())
+inline bool read_polygon_soup(std::string_view data, Mesh_file_format format, Polygon_soup& soup, std::string& error,
+                              const Soup_reading_limits& limits = Soup_reading_limits())
 {
   soup.clear();
   namespace internal = ICM::internal::reading;
@@ -95,10 +95,18 @@ inline bool read_polygon_soup(std::string_view data, Mesh_file_format format, Po
                        format_name(format) + " as the file name says");
     switch(format)
     {
-    case Mesh_file_format::Off: internal::read_off(data, soup, limits); break;
-    case Mesh_file_format::Obj: internal::read_obj(data, soup, limits); break;
-    case Mesh_file_format::Ply: internal::read_ply(data, soup, limits); break;
-    case Mesh_file_format::Stl: internal::read_stl(data, soup, limits); break;
+    case Mesh_file_format::Off:
+      internal::read_off(data, soup, limits);
+      break;
+    case Mesh_file_format::Obj:
+      internal::read_obj(data, soup, limits);
+      break;
+    case Mesh_file_format::Ply:
+      internal::read_ply(data, soup, limits);
+      break;
+    case Mesh_file_format::Stl:
+      internal::read_stl(data, soup, limits);
+      break;
     }
     for(std::size_t p = 0; p < soup.polygons.size(); ++p)
       internal::check_polygon(soup.polygons[p], soup.points.size(), soup, p);

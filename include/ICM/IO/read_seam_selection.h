@@ -53,12 +53,13 @@ bool read_seam_selection(
   for(int skipped = 0; skipped < 2; ++skipped)
     if(!std::getline(in, line))
     {
-      error = "seam file '" + path + "' has no third line (a CGAL selection file lists the selected "
+      error = "seam file '" + path +
+              "' has no third line (a CGAL selection file lists the selected "
               "vertices, faces, then edges as pairs of vertex indices, one line each)";
       return false;
     }
 
-  std::vector<std::size_t> ends; // pending pair
+  std::vector<std::size_t> ends;                      // pending pair
   std::set<std::pair<std::size_t, std::size_t>> read; // to keep each edge once
   int line_number = 2;
   while(std::getline(in, line))
@@ -80,21 +81,20 @@ bool read_seam_selection(
         const char* token_end = p;
         while(token_end < end && *token_end != ' ' && *token_end != '\t')
           ++token_end;
-        error = "seam file '" + path + "', line " + std::to_string(line_number) + ", value " +
-                std::to_string(value) + ": '" + std::string(p, token_end) + "' is not a vertex index";
+        error = "seam file '" + path + "', line " + std::to_string(line_number) + ", value " + std::to_string(value) +
+                ": '" + std::string(p, token_end) + "' is not a vertex index";
         return false;
       }
       if(index >= by_index.size())
       {
-        error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertex " +
-                std::to_string(index) + " out of range (the mesh has " + std::to_string(by_index.size()) +
-                " vertices)";
+        error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertex " + std::to_string(index) +
+                " out of range (the mesh has " + std::to_string(by_index.size()) + " vertices)";
         return false;
       }
       if(by_index[index].empty())
       {
-        error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertex " +
-                std::to_string(index) + " is in no face of the mesh";
+        error = "seam file '" + path + "', line " + std::to_string(line_number) + ": vertex " + std::to_string(index) +
+                " is in no face of the mesh";
         return false;
       }
       p = after;

@@ -48,8 +48,8 @@ inline void read_binary_stl(std::string_view data, Polygon_soup& soup, const Sou
       {
         unsigned char b[4];
         std::memcpy(b, record + 12 + 12 * corner + 4 * k, 4);
-        const std::uint32_t bits = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
-                                   std::uint32_t(b[3]) << 24;
+        const std::uint32_t bits =
+          std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
         std::memcpy(&x[k], &bits, 4);
         if(!std::isfinite(x[k]))
           refuse("binary STL: triangle " + std::to_string(t) + " has a non-finite coordinate");
@@ -66,7 +66,16 @@ inline void read_ascii_stl(std::string_view text, Polygon_soup& soup, const Soup
 {
   Text_lines lines(text);
   std::string_view line;
-  enum class State { Solid, Facet, Loop, Vertex, Endloop, Endfacet, Done } state = State::Solid;
+  enum class State
+  {
+    Solid,
+    Facet,
+    Loop,
+    Vertex,
+    Endloop,
+    Endfacet,
+    Done
+  } state = State::Solid;
   std::vector<std::size_t> triangle;
   std::size_t facet_line = 0;
   auto expect = [&](std::string_view found, const char* wanted) {
@@ -107,8 +116,8 @@ inline void read_ascii_stl(std::string_view text, Polygon_soup& soup, const Soup
       if(word == "endloop")
       {
         if(triangle.size() != 3)
-          refuse_at(facet_line, "the facet has " + std::to_string(triangle.size()) +
-                                  " vertices (STL facets are triangles)");
+          refuse_at(facet_line,
+                    "the facet has " + std::to_string(triangle.size()) + " vertices (STL facets are triangles)");
         soup.polygons.push_back(triangle);
         soup.polygon_lines.push_back(facet_line);
         triangle.clear();

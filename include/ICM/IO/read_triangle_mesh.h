@@ -52,15 +52,15 @@ struct Mesh_reading_options
 /// What `read_triangle_mesh()` read, repaired or refused.
 struct Mesh_reading_report
 {
-  std::string message;                  ///< empty on success, else the reason of the refusal
+  std::string message; ///< empty on success, else the reason of the refusal
   std::size_t file_vertices = 0, file_faces = 0;
-  std::vector<std::size_t> isolated_vertices;  ///< file indices of the vertices dropped
-  std::vector<std::size_t> split_vertices;     ///< file index of each vertex copy added
+  std::vector<std::size_t> isolated_vertices; ///< file indices of the vertices dropped
+  std::vector<std::size_t> split_vertices;    ///< file index of each vertex copy added
   /// File indices of the faces reversed to agree with the faces around them (the orientation
   /// most faces of each connected component have is kept).
   std::vector<std::size_t> reoriented_faces;
-  std::size_t triangulated_faces = 0;          ///< polygons split into triangles
-  std::size_t non_triangle_faces = 0;          ///< polygons found (refused unless triangulated)
+  std::size_t triangulated_faces = 0; ///< polygons split into triangles
+  std::size_t non_triangle_faces = 0; ///< polygons found (refused unless triangulated)
   /// The file's index of each vertex of the mesh, in `vertices(mesh)` order.
   std::vector<std::size_t> file_vertex;
 
@@ -72,8 +72,7 @@ struct Mesh_reading_report
     std::vector<std::string> lines;
     if(!isolated_vertices.empty())
       lines.push_back("dropped " + std::to_string(isolated_vertices.size()) + " isolated vert" +
-                      (isolated_vertices.size() == 1 ? "ex" : "ices") + " (in no face): " +
-                      list_of(isolated_vertices));
+                      (isolated_vertices.size() == 1 ? "ex" : "ices") + " (in no face): " + list_of(isolated_vertices));
     if(!split_vertices.empty())
     {
       std::vector<std::size_t> distinct = split_vertices;

@@ -28,11 +28,13 @@ inline bool write_uv_files(const std::string& obj_path, const std::string& svg_p
                            std::string& error, const Svg_options& svg_options = Svg_options())
 {
   std::string invalid;
-  if(!is_valid_uv_mesh(m, invalid)) {
+  if(!is_valid_uv_mesh(m, invalid))
+  {
     error = "cannot write '" + obj_path + "': " + invalid;
     return false;
   }
-  if(!svg_path.empty() && !internal::check_svg_options(svg_options, invalid)) {
+  if(!svg_path.empty() && !internal::check_svg_options(svg_options, invalid))
+  {
     error = "cannot write '" + svg_path + "': " + invalid;
     return false;
   }

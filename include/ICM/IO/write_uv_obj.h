@@ -46,9 +46,10 @@ inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
 {
   using internal::put_exact_double;
   os << "# written by ICM\n";
-  os << "# " << m.positions.size() << " vertices, " << m.uvs.size()
-     << " texture coordinates, " << m.number_of_faces() << " faces\n";
-  for(std::size_t i = 0; i < m.positions.size() && os; ++i) {
+  os << "# " << m.positions.size() << " vertices, " << m.uvs.size() << " texture coordinates, " << m.number_of_faces()
+     << " faces\n";
+  for(std::size_t i = 0; i < m.positions.size() && os; ++i)
+  {
     const auto& p = m.positions[i];
     os << "v ";
     put_exact_double(os, p[0]);
@@ -58,7 +59,8 @@ inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
     put_exact_double(os, p[2]);
     os << '\n';
   }
-  for(std::size_t i = 0; i < m.uvs.size() && os; ++i) {
+  for(std::size_t i = 0; i < m.uvs.size() && os; ++i)
+  {
     const auto& t = m.uvs[i];
     os << "vt ";
     put_exact_double(os, t[0]);
@@ -66,11 +68,12 @@ inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
     put_exact_double(os, t[1]);
     os << '\n';
   }
-  for(std::size_t f = 0; f < m.number_of_faces() && os; ++f) {
+  for(std::size_t f = 0; f < m.number_of_faces() && os; ++f)
+  {
     const auto& p = m.face_positions[f];
     const auto& t = m.face_uvs[f];
-    os << "f " << p[0] + 1 << '/' << t[0] + 1 << ' ' << p[1] + 1 << '/' << t[1] + 1 << ' '
-       << p[2] + 1 << '/' << t[2] + 1 << '\n';
+    os << "f " << p[0] + 1 << '/' << t[0] + 1 << ' ' << p[1] + 1 << '/' << t[1] + 1 << ' ' << p[2] + 1 << '/'
+       << t[2] + 1 << '\n';
   }
   return static_cast<bool>(os);
 }
@@ -84,12 +87,13 @@ inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
 inline bool write_uv_obj(const std::string& path, const Uv_mesh& m, std::string& error)
 {
   std::string invalid;
-  if(!is_valid_uv_mesh(m, invalid)) {
+  if(!is_valid_uv_mesh(m, invalid))
+  {
     error = "cannot write '" + path + "': " + invalid;
     return false;
   }
   return internal::write_file_atomically(
-      path, [&m](std::ostream& os) { return write_uv_obj(os, m); }, error);
+    path, [&m](std::ostream& os) { return write_uv_obj(os, m); }, error);
 }
 
 } // namespace IO

@@ -50,14 +50,27 @@ inline std::string svg_escape(const std::string& s)
 {
   std::string out;
   out.reserve(s.size());
-  for(char c : s) {
-    switch(c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+  for(char c : s)
+  {
+    switch(c)
+    {
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    case '\'':
+      out += "&#39;";
+      break;
+    default:
+      out += c;
     }
   }
   return out;
@@ -68,13 +81,15 @@ inline std::string svg_escape(const std::string& s)
 inline void put_coordinate(std::ostream& os, double x)
 {
   long long r = std::llround(x * 100.);
-  if(r < 0) {
+  if(r < 0)
+  {
     os << '-';
     r = -r;
   }
   os << r / 100;
   const int frac = static_cast<int>(r % 100);
-  if(frac != 0) {
+  if(frac != 0)
+  {
     os << '.' << static_cast<char>('0' + frac / 10);
     if(frac % 10 != 0)
       os << static_cast<char>('0' + frac % 10);
@@ -84,15 +99,11 @@ inline void put_coordinate(std::ostream& os, double x)
 /// Diverging blue - white - red colour map (the stops of ColorBrewer's RdBu) on t in [-1, 1].
 inline std::array<int, 3> diverging_colour(double t)
 {
-  static const double stops[5][3] = {{33, 102, 172},
-                                     {146, 197, 222},
-                                     {255, 255, 255},
-                                     {244, 165, 130},
-                                     {178, 24, 43}};
-  if(!(t >= -1.))  // also catches NaN
+  static const double stops[5][3] = {{33, 102, 172}, {146, 197, 222}, {255, 255, 255}, {244, 165, 130}, {178, 24, 43}};
+  if(!(t >= -1.)) // also catches NaN
     t = (t > 0.) ? 1. : -1.;
   t = (std::min)(1., t);
-  const double s = (t + 1.) * 2.;  // in [0, 4]
+  const double s = (t + 1.) * 2.; // in [0, 4]
   const int i = (std::min)(3, static_cast<int>(s));
   const double a = s - i;
   std::array<int, 3> rgb;
@@ -111,8 +122,7 @@ inline void put_colour(std::ostream& os, const std::array<int, 3>& rgb)
 
 /// Draws one layout fitted into the square [x0, x0 + size] x [y0, y0 + size].
 /// Returns the number of flipped faces.
-inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0, double y0,
-                               const IO::Svg_options& opt)
+inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0, double y0, const IO::Svg_options& opt)
 {
   const std::size_t nf = m.number_of_faces();
   const std::vector<double> ratios = IO::log_area_ratios(m);
@@ -128,8 +138,10 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   double umin = std::numeric_limits<double>::infinity(), umax = -umin;
   double vmin = umin, vmax = -umin;
   double edge_sum = 0.;
-  for(std::size_t f = 0; f < nf; ++f) {
-    for(int k = 0; k < 3; ++k) {
+  for(std::size_t f = 0; f < nf; ++f)
+  {
+    for(int k = 0; k < 3; ++k)
+    {
       const auto& t = m.uvs[m.face_uvs[f][k]];
       const auto& s = m.uvs[m.face_uvs[f][(k + 1) % 3]];
       const double u = mirror * t[0];
@@ -151,7 +163,8 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
 
   auto put_face = [&](std::size_t f) {
     os << "<polygon points=\"";
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const auto& t = m.uvs[m.face_uvs[f][k]];
       if(k > 0)
         os << ' ';
@@ -170,16 +183,21 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   const bool edges = nf <= opt.max_faces_with_edges;
 
   os << "<g stroke=\"";
-  if(edges) {
+  if(edges)
+  {
     os << "#333333\" stroke-width=\"";
     put_coordinate(os, stroke);
     os << "\" stroke-linejoin=\"round\">\n";
-  } else {
+  }
+  else
+  {
     os << "none\">\n";
   }
   std::vector<std::size_t> flipped;
-  for(std::size_t f = 0; f < nf; ++f) {
-    if(mirror * IO::uv_signed_area(unit, f) < 0.) {
+  for(std::size_t f = 0; f < nf; ++f)
+  {
+    if(mirror * IO::uv_signed_area(unit, f) < 0.)
+    {
       flipped.push_back(f);
       continue;
     }
@@ -191,10 +209,12 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   os << "</g>\n";
 
   // Flipped faces last, on top, in black with a bright outline so that even tiny ones show.
-  if(!flipped.empty()) {
+  if(!flipped.empty())
+  {
     os << "<g fill=\"#000000\" stroke=\"#00ff00\" stroke-width=\"1\" "
           "stroke-linejoin=\"round\">\n";
-    for(std::size_t f : flipped) {
+    for(std::size_t f : flipped)
+    {
       put_face(f);
       os << "/>\n";
     }
@@ -205,12 +225,13 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
 
 inline bool check_svg_options(const IO::Svg_options& opt, std::string& reason)
 {
-  if(!(opt.size > 0.) || !std::isfinite(opt.size) || !(opt.margin >= 0.) ||
-     !(2. * opt.margin < opt.size)) {
+  if(!(opt.size > 0.) || !std::isfinite(opt.size) || !(opt.margin >= 0.) || !(2. * opt.margin < opt.size))
+  {
     reason = "invalid picture size or margin";
     return false;
   }
-  if(!(opt.log_ratio_range > 0.) || !std::isfinite(opt.log_ratio_range)) {
+  if(!(opt.log_ratio_range > 0.) || !std::isfinite(opt.log_ratio_range))
+  {
     reason = "the log ratio range must be positive";
     return false;
   }
@@ -223,7 +244,7 @@ struct Svg_frame
 {
   double title_h = 0., panel_title_h = 0., legend_h = 0., width = 0., height = 0.;
 
-  Svg_frame(const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels, const IO::Svg_options& opt)
+  Svg_frame(const std::vector<std::pair<std::string, const IO::Uv_mesh*>>& panels, const IO::Svg_options& opt)
   {
     title_h = opt.title.empty() ? 0. : 40.;
     bool any_panel_title = false;
@@ -250,40 +271,43 @@ inline void put_svg_start(std::ostream& os, const Svg_frame& frame, const IO::Sv
   os << "\" font-family=\"sans-serif\">\n";
   os << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
 
-  if(!opt.title.empty()) {
+  if(!opt.title.empty())
+  {
     os << "<text x=\"";
     put_coordinate(os, 0.5 * frame.width);
-    os << "\" y=\"28\" font-size=\"22\" text-anchor=\"middle\">" << svg_escape(opt.title)
-       << "</text>\n";
+    os << "\" y=\"28\" font-size=\"22\" text-anchor=\"middle\">" << svg_escape(opt.title) << "</text>\n";
   }
 }
 
 /// Every layout in its square, with its name above it and its count of flipped faces.
 /// Returns the flipped faces of all layouts.
-inline std::size_t put_svg_panels(std::ostream& os, const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
+inline std::size_t put_svg_panels(std::ostream& os,
+                                  const std::vector<std::pair<std::string, const IO::Uv_mesh*>>& panels,
                                   const Svg_frame& frame, const IO::Svg_options& opt)
 {
   std::size_t total_flipped = 0;
-  for(std::size_t i = 0; i < panels.size(); ++i) {
+  for(std::size_t i = 0; i < panels.size(); ++i)
+  {
     const double x0 = opt.size * static_cast<double>(i);
     const double y0 = frame.title_h + frame.panel_title_h;
-    if(!panels[i].first.empty()) {
+    if(!panels[i].first.empty())
+    {
       os << "<text x=\"";
       put_coordinate(os, x0 + 0.5 * opt.size);
       os << "\" y=\"";
       put_coordinate(os, frame.title_h + 22.);
-      os << "\" font-size=\"18\" text-anchor=\"middle\">" << svg_escape(panels[i].first)
-         << "</text>\n";
+      os << "\" font-size=\"18\" text-anchor=\"middle\">" << svg_escape(panels[i].first) << "</text>\n";
     }
     const std::size_t flipped = draw_layout(os, *panels[i].second, x0, y0, opt);
     total_flipped += flipped;
-    if(flipped > 0) {
+    if(flipped > 0)
+    {
       os << "<text x=\"";
       put_coordinate(os, x0 + opt.size - 6.);
       os << "\" y=\"";
       put_coordinate(os, y0 + 16.);
-      os << "\" font-size=\"13\" text-anchor=\"end\">" << flipped << " flipped face"
-         << (flipped > 1 ? "s" : "") << "</text>\n";
+      os << "\" font-size=\"13\" text-anchor=\"end\">" << flipped << " flipped face" << (flipped > 1 ? "s" : "")
+         << "</text>\n";
     }
   }
   return total_flipped;
@@ -299,7 +323,8 @@ inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::S
   const double bar_y = frame.title_h + frame.panel_title_h + opt.size + 8.;
   const double r = opt.log_ratio_range;
   os << "<defs><linearGradient id=\"icm_log_area_ratio\" x1=\"0\" x2=\"1\" y1=\"0\" y2=\"0\">";
-  for(int s = 0; s <= 8; ++s) {
+  for(int s = 0; s <= 8; ++s)
+  {
     os << "<stop offset=\"" << s * 12.5 << "%\" stop-color=\"";
     put_colour(os, diverging_colour(-1. + s / 4.));
     os << "\"/>";
@@ -315,9 +340,9 @@ inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::S
         "stroke-width=\"0.5\"/>\n";
   const double label_y = bar_y + 30.;
   const std::pair<double, std::string> labels[3] = {
-      {bar_x, "-" + format_label(r)}, {bar_x + 0.5 * bar_w, "0"},
-      {bar_x + bar_w, "+" + format_label(r)}};
-  for(const auto& l : labels) {
+    {bar_x, "-" + format_label(r)}, {bar_x + 0.5 * bar_w, "0"}, {bar_x + bar_w, "+" + format_label(r)}};
+  for(const auto& l : labels)
+  {
     os << "<text x=\"";
     put_coordinate(os, l.first);
     os << "\" y=\"";
@@ -330,7 +355,8 @@ inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::S
   put_coordinate(os, label_y + 18.);
   os << "\" font-size=\"13\" text-anchor=\"middle\">"
         "log(UV area / 3D area), UV scaled to the total 3D area</text>\n";
-  if(total_flipped > 0) {
+  if(total_flipped > 0)
+  {
     os << "<rect x=\"";
     put_coordinate(os, bar_x + bar_w + 16.);
     os << "\" y=\"";
@@ -344,8 +370,7 @@ inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::S
   }
 }
 
-inline bool write_svg_panels(std::ostream& os,
-                             const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
+inline bool write_svg_panels(std::ostream& os, const std::vector<std::pair<std::string, const IO::Uv_mesh*>>& panels,
                              const IO::Svg_options& opt)
 {
   const Svg_frame frame(panels, opt);
@@ -358,23 +383,26 @@ inline bool write_svg_panels(std::ostream& os,
 }
 
 inline bool write_svg_file(const std::string& path,
-                           const std::vector<std::pair<std::string, const IO::Uv_mesh*> >& panels,
-                           std::string& error, const IO::Svg_options& opt)
+                           const std::vector<std::pair<std::string, const IO::Uv_mesh*>>& panels, std::string& error,
+                           const IO::Svg_options& opt)
 {
   std::string reason;
-  if(!check_svg_options(opt, reason)) {
+  if(!check_svg_options(opt, reason))
+  {
     error = "cannot write '" + path + "': " + reason;
     return false;
   }
-  for(const auto& p : panels) {
-    if(!IO::is_valid_uv_mesh(*p.second, reason)) {
-      error = "cannot write '" + path + "': " +
-              (p.first.empty() ? std::string() : "layout '" + p.first + "': ") + reason;
+  for(const auto& p : panels)
+  {
+    if(!IO::is_valid_uv_mesh(*p.second, reason))
+    {
+      error =
+        "cannot write '" + path + "': " + (p.first.empty() ? std::string() : "layout '" + p.first + "': ") + reason;
       return false;
     }
   }
   return write_file_atomically(
-      path, [&](std::ostream& os) { return write_svg_panels(os, panels, opt); }, error);
+    path, [&](std::ostream& os) { return write_svg_panels(os, panels, opt); }, error);
 }
 
 } // namespace internal
@@ -400,12 +428,12 @@ inline bool write_uv_svg(const std::string& path, const Uv_mesh& m, std::string&
 /// Writes the SVG picture of `m` (see the overload on a path) to `os`. Returns false with
 /// `error` naming the reason when the options or the mesh are invalid, or the stream failed;
 /// for an output written together with others, all or nothing (`write_uv_files()`).
-inline bool write_uv_svg(std::ostream& os, const Uv_mesh& m, std::string& error,
-                         const Svg_options& opt = Svg_options())
+inline bool write_uv_svg(std::ostream& os, const Uv_mesh& m, std::string& error, const Svg_options& opt = Svg_options())
 {
   if(!internal::check_svg_options(opt, error) || !is_valid_uv_mesh(m, error))
     return false;
-  if(!internal::write_svg_panels(os, {{std::string(), &m}}, opt)) {
+  if(!internal::write_svg_panels(os, {{std::string(), &m}}, opt))
+  {
     error = "output error";
     return false;
   }
@@ -417,11 +445,10 @@ inline bool write_uv_svg(std::ostream& os, const Uv_mesh& m, std::string& error,
 /// same mesh), each in its own square with its name above it, and one shared colour bar.
 /// Each layout is fitted to its square independently; the colours do not depend on the scale
 /// of a layout, so they compare across panels.
-inline bool write_uv_svg_panels(const std::string& path,
-                                const std::vector<std::pair<std::string, Uv_mesh> >& panels,
+inline bool write_uv_svg_panels(const std::string& path, const std::vector<std::pair<std::string, Uv_mesh>>& panels,
                                 std::string& error, const Svg_options& opt = Svg_options())
 {
-  std::vector<std::pair<std::string, const Uv_mesh*> > refs;
+  std::vector<std::pair<std::string, const Uv_mesh*>> refs;
   refs.reserve(panels.size());
   for(const auto& p : panels)
     refs.emplace_back(p.first, &p.second);

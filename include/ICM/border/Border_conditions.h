@@ -60,9 +60,7 @@ template <class VertexCurvatureMap>
 class Prescribed_border_curvature
 {
 public:
-  explicit Prescribed_border_curvature(VertexCurvatureMap curvature = VertexCurvatureMap())
-    : curvature_(curvature)
-  {}
+  explicit Prescribed_border_curvature(VertexCurvatureMap curvature = VertexCurvatureMap()) : curvature_(curvature) {}
 
   std::string name() const { return "prescribed-curvature"; }
   const VertexCurvatureMap& curvature_map() const { return curvature_; }
@@ -111,11 +109,14 @@ inline Border_target refuse_faces_inside_a_hole(const Mesh_index& index, Border_
   }
   if(count == 0)
     return t;
-  t.status = Status::failure(CGAL::Surface_mesh_parameterization::ERROR_NO_1_TO_1_MAPPING,
-                             std::to_string(count) + " face(s) have all three corners on one hole's border (the first "
-                             "is face " + std::to_string(first) + ", on border loop " +
-                             std::to_string(loop_of[index.faces[first][0]]) + "): on that loop's circle they "
-                             "would lie inside the hole, flipped; split them, or choose another border condition");
+  t.status =
+    Status::failure(CGAL::Surface_mesh_parameterization::ERROR_NO_1_TO_1_MAPPING,
+                    std::to_string(count) +
+                      " face(s) have all three corners on one hole's border (the first "
+                      "is face " +
+                      std::to_string(first) + ", on border loop " + std::to_string(loop_of[index.faces[first][0]]) +
+                      "): on that loop's circle they "
+                      "would lie inside the hole, flipped; split them, or choose another border condition");
   return t;
 }
 
@@ -134,8 +135,8 @@ class Circle_domain
 public:
   enum class Outer_loop
   {
-    Longest,            ///< the loop of largest 3D length
-    Of_border_halfedge  ///< the loop of the halfedge passed to `parameterize()`
+    Longest,           ///< the loop of largest 3D length
+    Of_border_halfedge ///< the loop of the halfedge passed to `parameterize()`
   };
 
   explicit Circle_domain(Outer_loop outer = Outer_loop::Longest, int max_iterations = 200, int anderson_depth = 6)

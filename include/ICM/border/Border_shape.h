@@ -24,11 +24,16 @@
 // telling a circle from a square needs only the names of their bases.
 namespace CGAL {
 namespace Surface_mesh_parameterization {
-template <class TriangleMesh_> class Circular_border_parameterizer_3;
-template <class TriangleMesh_> class Circular_border_arc_length_parameterizer_3;
-template <class TriangleMesh_> class Square_border_parameterizer_3;
-template <class TriangleMesh_> class Square_border_arc_length_parameterizer_3;
-template <class TriangleMesh_> class Two_vertices_parameterizer_3;
+template <class TriangleMesh_>
+class Circular_border_parameterizer_3;
+template <class TriangleMesh_>
+class Circular_border_arc_length_parameterizer_3;
+template <class TriangleMesh_>
+class Square_border_parameterizer_3;
+template <class TriangleMesh_>
+class Square_border_arc_length_parameterizer_3;
+template <class TriangleMesh_>
+class Two_vertices_parameterizer_3;
 } // namespace Surface_mesh_parameterization
 } // namespace CGAL
 
@@ -54,7 +59,6 @@ struct Border_parameterizer_shape<BorderParameterizer, std::void_t<typename Bord
     std::is_base_of<CGAL::Surface_mesh_parameterization::Square_border_parameterizer_3<Mesh>,
                     BorderParameterizer>::value;
 };
-
 
 } // namespace internal
 
@@ -110,11 +114,11 @@ public:
 
 private:
   template <class TriangleMesh, class VertexIndexMap>
-  Border_target polygon_target(const TriangleMesh& mesh,
-                               typename boost::graph_traits<TriangleMesh>::halfedge_descriptor bhd,
-                               const internal::Mesh_index& index,
-                               const std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices,
-                               VertexIndexMap vimap) const
+  Border_target
+  polygon_target(const TriangleMesh& mesh, typename boost::graph_traits<TriangleMesh>::halfedge_descriptor bhd,
+                 const internal::Mesh_index& index,
+                 const std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices,
+                 VertexIndexMap vimap) const
   {
     using Point_2 =
       typename CGAL::Surface_mesh_parameterization::internal::Kernel_traits<TriangleMesh>::Kernel::Point_2;

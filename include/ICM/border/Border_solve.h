@@ -71,9 +71,7 @@ inline Inscribed_circle inscribed_circle(const std::vector<double>& lengths)
   if(!(*longest < others))
     return c;
   double low = *longest / 2;
-  c.long_side = subtended_angle_sum(lengths, low, -1) >= 2 * M_PI
-                  ? -1
-                  : static_cast<int>(longest - lengths.begin());
+  c.long_side = subtended_angle_sum(lengths, low, -1) >= 2 * M_PI ? -1 : static_cast<int>(longest - lengths.begin());
   // On the short branch the sum falls below 2 pi by R = sum l / 4 (asin x <= pi x / 2); on
   // the far branch it rises to 2 pi, crossing where the other sides balance the long one.
   double high = (others + *longest) / 4;
@@ -93,14 +91,13 @@ inline Inscribed_circle inscribed_circle(const std::vector<double>& lengths)
   return c;
 }
 
-
 /// The circle-domain targets at the metric of `u`: per loop, the circle through its
 /// polygon of metric lengths, and each vertex's turning angle on it (outer loop +, holes -).
 /// Interior vertices 0. Returns false (with `why`) when a loop has no circumscribed circle.
 template <class Metric>
-bool circle_domain_targets(const Mesh_index& index, const Metric& metric, const Eigen::VectorXd& u,
-                           int outer_loop, Eigen::VectorXd& target, std::vector<double>& lengths,
-                           std::vector<double>& radii, std::string& why)
+bool circle_domain_targets(const Mesh_index& index, const Metric& metric, const Eigen::VectorXd& u, int outer_loop,
+                           Eigen::VectorXd& target, std::vector<double>& lengths, std::vector<double>& radii,
+                           std::string& why)
 {
   target.setZero(index.number_of_vertices());
   radii.resize(index.number_of_boundary_loops());
@@ -189,8 +186,8 @@ struct Border_solve_report
 {
   bool converged = false;
   std::string message;
-  int newton_iterations = 0;  ///< Newton steps of every inverse curvature map solved
-  int outer_iterations = 0;   ///< circle domain: evaluations of u <- K^{-1}(T(u))
+  int newton_iterations = 0; ///< Newton steps of every inverse curvature map solved
+  int outer_iterations = 0;  ///< circle domain: evaluations of u <- K^{-1}(T(u))
   /// max |K(u) - target| over all vertices (circle domains: the targets at the final u) at
   /// the start of each outer iteration, and at the end.
   std::vector<double> residual_history;
@@ -265,8 +262,7 @@ Border_solve_report solve_circle_domain(Inverse_curvature_map<SparseSolver, Metr
   for(;; ++report.outer_iterations)
   {
     const Metric& metric = solver.curvature_map().metric();
-    if(!internal::circle_domain_targets(index, metric, u, circles.outer_loop, target, lengths, radii,
-                                        report.message))
+    if(!internal::circle_domain_targets(index, metric, u, circles.outer_loop, target, lengths, radii, report.message))
       return report;
     gu = u;
     Newton_report newton = solver.solve(target, gu, inner);
@@ -282,16 +278,15 @@ Border_solve_report solve_circle_domain(Inverse_curvature_map<SparseSolver, Metr
     report.residual_history.push_back(residual);
     if(!newton.converged)
     {
-      report.message = "circle domain, outer iteration " + std::to_string(report.outer_iterations) +
-                       ": " + newton.message;
+      report.message =
+        "circle domain, outer iteration " + std::to_string(report.outer_iterations) + ": " + newton.message;
       return report;
     }
     if(residual <= options.tolerance)
     {
       u = gu;
       // The pinned vertex is outside Newton's residual: measure every vertex at the end.
-      if(!internal::circle_domain_targets(index, metric, u, circles.outer_loop, target, lengths, radii,
-                                          report.message))
+      if(!internal::circle_domain_targets(index, metric, u, circles.outer_loop, target, lengths, radii, report.message))
         return report;
       Eigen::VectorXd k;
       solver.curvature_map().evaluate(u, k);

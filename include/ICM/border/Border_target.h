@@ -23,9 +23,9 @@ namespace ICM {
 /// What a border condition asks of the border, in curvature space.
 enum class Border_kind
 {
-  Free,                  ///< left to the entropy optimum (u = u0 on the border)
-  Prescribed_curvature,  ///< a given turning angle per border vertex
-  Circles                ///< every loop a circle (outer loop around the domain)
+  Free,                 ///< left to the entropy optimum (u = u0 on the border)
+  Prescribed_curvature, ///< a given turning angle per border vertex
+  Circles               ///< every loop a circle (outer loop around the domain)
 };
 
 /// A border condition applied to one indexed mesh: what `Inverse_curvature_map_parameterizer_3`
@@ -79,8 +79,7 @@ inline Border_target checked_gauss_bonnet(const Mesh_index& index, Border_target
 inline int loop_of_vertex(const Mesh_index& index, int v)
 {
   for(int l = 0; l < index.number_of_boundary_loops(); ++l)
-    if(std::find(index.boundary_loops[l].begin(), index.boundary_loops[l].end(), v) !=
-       index.boundary_loops[l].end())
+    if(std::find(index.boundary_loops[l].begin(), index.boundary_loops[l].end(), v) != index.boundary_loops[l].end())
       return l;
   return -1;
 }

@@ -19,7 +19,6 @@ namespace ICM {
 
 namespace internal {
 
-
 /// Per vertex, the straight stretches of a prescribed border it must lie on, {-1, -1} for
 /// none. A stretch is a run of border vertices with turning angle exactly 0 with the two
 /// vertices that end it, numbered by the turning vertex that starts it (a turning vertex is
@@ -48,7 +47,7 @@ inline std::vector<std::array<int, 2>> straight_stretches(const Mesh_index& inde
       {
         stretches[v][1] = i == n ? stretches[v][1] : id + 1; // the one it starts
         if(i > 0)
-          stretches[v][0] = id;                              // the one it ends (at i = n: the last)
+          stretches[v][0] = id; // the one it ends (at i = n: the last)
         ++id;
       }
       else

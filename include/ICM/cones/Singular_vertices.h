@@ -38,8 +38,8 @@ namespace ICM {
 /// highest first: the most negatively curved places, for the negative cones of genus > 1.
 /// `message` is set when K^{-1} fails.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
-std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metric& metric,
-                                  std::string& message, bool maxima = false)
+std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metric& metric, std::string& message,
+                                  bool maxima = false)
 {
   const int nv = index.number_of_vertices();
   int interior = 0;
@@ -80,9 +80,9 @@ std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metri
 /// What `greedy_cones` chose and how the distortion fell.
 struct Cone_selection
 {
-  std::vector<int> cones;                  ///< interior cone vertices, in the order added
-  std::vector<double> max_log_scale;       ///< max_N |u - u0| before each cone and at the end
-  std::string message;                     ///< empty, or why a solve failed
+  std::vector<int> cones;            ///< interior cone vertices, in the order added
+  std::vector<double> max_log_scale; ///< max_N |u - u0| before each cone and at the end
+  std::string message;               ///< empty, or why a solve failed
   bool ok() const { return message.empty(); }
 };
 
@@ -92,8 +92,8 @@ struct Cone_selection
 /// `max_cones` is reached. A closed genus-0 surface needs two seeds (one cone would carry
 /// curvature 4 pi); other surfaces need one when they have no border.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
-Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric,
-                            const std::vector<int>& seeds, const Cone_options& options = Cone_options())
+Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
+                            const Cone_options& options = Cone_options())
 {
   const int nv = index.number_of_vertices();
   Cone_selection selection;
@@ -120,12 +120,11 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
     for(int v = 0; v < nv; ++v)
       if(is_singular[v])
         u[v] = metric.u0[v];
-    const Newton_report report =
-      solver.solve(Eigen::VectorXd::Zero(nv), u, newton);
+    const Newton_report report = solver.solve(Eigen::VectorXd::Zero(nv), u, newton);
     if(!report.converged)
     {
-      selection.message = "entropy optimum with " + std::to_string(selection.cones.size()) +
-                          " cones: " + report.message;
+      selection.message =
+        "entropy optimum with " + std::to_string(selection.cones.size()) + " cones: " + report.message;
       return selection;
     }
     // Candidates: non-singular vertices whose |u - u0| is a local maximum over their ring
@@ -157,8 +156,8 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
     // Up to half as many new cones as there are, at least one: a cone changes the optimum
     // mostly near itself, so far-apart peaks of one round are nearly the peaks the next
     // rounds would find one by one, at a fraction of the rounds.
-    const int batch = std::min({room, static_cast<int>(peaks.size()),
-                                std::max(1, static_cast<int>(selection.cones.size()) / 2)});
+    const int batch =
+      std::min({room, static_cast<int>(peaks.size()), std::max(1, static_cast<int>(selection.cones.size()) / 2)});
     for(int i = 0; i < batch; ++i)
     {
       is_singular[peaks[i]] = 1;

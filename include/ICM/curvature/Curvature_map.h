@@ -50,8 +50,7 @@ class Curvature_map
 {
 public:
   Curvature_map(const internal::Mesh_index& index, const Metric& metric)
-    : index_(index), metric_(metric), radii_(index.number_of_vertices()),
-      lengths_(index.number_of_edges())
+    : index_(index), metric_(metric), radii_(index.number_of_vertices()), lengths_(index.number_of_edges())
   {}
 
   static constexpr bool has_intrinsic_triangulation = internal::Has_intrinsic_triangulation<Metric>::value;

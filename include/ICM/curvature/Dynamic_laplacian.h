@@ -42,8 +42,7 @@ using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 /// The analysis reads the matrix in place: Eigen 3.4 recognises "no ordering" only as
 /// `NaturalOrdering<Eigen::Index>`, which does not compile with int indices, and otherwise
 /// copies the matrix twice per analysis (together about as long as a factorization).
-class Simplicial_solver
-  : public Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Eigen::NaturalOrdering<int>>
+class Simplicial_solver : public Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Eigen::NaturalOrdering<int>>
 {
 public:
   void analyzePattern(const Sparse_matrix& matrix)
@@ -100,10 +99,7 @@ public:
     else
       simplicial_.factorize(matrix);
   }
-  Eigen::ComputationInfo info() const
-  {
-    return nested_ ? nested_dissection_.info() : simplicial_.info();
-  }
+  Eigen::ComputationInfo info() const { return nested_ ? nested_dissection_.info() : simplicial_.info(); }
   template <class Rhs>
   typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
   {
@@ -132,8 +128,7 @@ template <class Solver, class = void>
 struct Reports_fill : std::false_type
 {};
 template <class Solver>
-struct Reports_fill<Solver, std::void_t<decltype(std::declval<const Solver&>().factor_nonzeros())>>
-  : std::true_type
+struct Reports_fill<Solver, std::void_t<decltype(std::declval<const Solver&>().factor_nonzeros())>> : std::true_type
 {};
 
 /// Delta(u) restricted to a free vertex set: Delta_ii = sum_j w_ij over all neighbours,
@@ -227,8 +222,8 @@ public:
   /// factorized one in the Loewner order). Returns false when `max_refinements` corrections
   /// do not shrink below `tolerance` relative to x.
   template <class Rhs>
-  bool solve_refined(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x,
-                     double tolerance = 1e-13, int max_refinements = 6) const
+  bool solve_refined(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance = 1e-13,
+                     int max_refinements = 6) const
   {
     x = solver_.solve(b);
     for(int refinement = 0; refinement < max_refinements; ++refinement)
@@ -353,7 +348,7 @@ private:
   Sparse_matrix matrix_;
   std::vector<int> diagonal_slot_;
   std::vector<int> edge_slot_;
-  std::vector<int> column_start_, next_;          // build_pattern's scratch, kept between rebuilds
+  std::vector<int> column_start_, next_; // build_pattern's scratch, kept between rebuilds
   std::vector<std::pair<int, int>> entries_;
   SparseSolver solver_;
   bool factorized_ = false;

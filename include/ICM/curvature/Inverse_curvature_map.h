@@ -47,8 +47,7 @@ template <class SparseSolver = Default_sparse_solver, class Metric = Circle_pack
 class Inverse_curvature_map
 {
 public:
-  Inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric,
-                        const std::vector<char>& is_free)
+  Inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_free)
     : index_(index), curvature_(index, metric), laplacian_(curvature_.mesh_index(), is_free),
       pattern_version_(curvature_.triangulation_version())
   {}
@@ -112,7 +111,6 @@ public:
     report.converged = true;
     return report;
   }
-
 
 private:
   /// The Newton step du = Delta_FF^{-1} residual at the current metric.
@@ -199,8 +197,7 @@ private:
     return laplacian_.rebuild_pattern();
   }
 
-  void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k,
-                     Eigen::VectorXd& residual) const
+  void free_residual(const Eigen::VectorXd& k_target, const Eigen::VectorXd& k, Eigen::VectorXd& residual) const
   {
     residual.resize(laplacian_.size());
     for(int i = 0; i < laplacian_.size(); ++i)
@@ -210,10 +207,7 @@ private:
     }
   }
 
-  static double max_norm(const Eigen::VectorXd& x)
-  {
-    return x.size() == 0 ? 0.0 : x.cwiseAbs().maxCoeff();
-  }
+  static double max_norm(const Eigen::VectorXd& x) { return x.size() == 0 ? 0.0 : x.cwiseAbs().maxCoeff(); }
 
   const internal::Mesh_index& index_;
   Curvature_map<Metric> curvature_;
@@ -235,15 +229,15 @@ Newton_report inverse_curvature_map(const internal::Mesh_index& index, const Met
   const int nv = index.number_of_vertices();
   if(k_target.size() != nv)
   {
-    report.message = "the target curvature has " + std::to_string(k_target.size()) +
-                     " entries for " + std::to_string(nv) + " vertices";
+    report.message = "the target curvature has " + std::to_string(k_target.size()) + " entries for " +
+                     std::to_string(nv) + " vertices";
     return report;
   }
   const double defect = gauss_bonnet_defect(index, k_target);
   if(!meets_gauss_bonnet(defect, nv))
   {
-    report.message = "the target curvature violates Gauss-Bonnet: its sum differs from 2 pi chi by " +
-                     std::to_string(defect);
+    report.message =
+      "the target curvature violates Gauss-Bonnet: its sum differs from 2 pi chi by " + std::to_string(defect);
     return report;
   }
   if(u.size() != nv)

@@ -46,13 +46,13 @@ struct Cut_graph_options
 /// The seam edges of a cut and what went into them.
 struct Cut_graph_result
 {
-  std::vector<char> is_seam;          ///< per surface edge; never a border edge
+  std::vector<char> is_seam; ///< per surface edge; never a border edge
   int number_of_seam_edges = 0;
-  int number_of_terminals = 0;        ///< interior cones + boundary loops
-  int number_of_tree_edges = 0;       ///< edges of the tree joining the terminals
-  int number_of_generators = 0;       ///< homology generators added, 2g on genus g
-  int number_of_pruned_edges = 0;     ///< dangling seam edges removed
-  double seam_length = 0;             ///< total 3D length of the seam edges
+  int number_of_terminals = 0;    ///< interior cones + boundary loops
+  int number_of_tree_edges = 0;   ///< edges of the tree joining the terminals
+  int number_of_generators = 0;   ///< homology generators added, 2g on genus g
+  int number_of_pruned_edges = 0; ///< dangling seam edges removed
+  double seam_length = 0;         ///< total 3D length of the seam edges
   Status status;
   bool ok() const { return status.ok(); }
 };
@@ -71,8 +71,7 @@ struct Surface_arc
 
 /// The edge graph of the surface, both directions of every edge, in Boost.Graph's compressed
 /// form: built once per cut, then shared by every shortest-path search.
-using Surface_graph =
-  boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, Surface_arc>;
+using Surface_graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, Surface_arc>;
 
 inline Surface_graph make_surface_graph(const Mesh_index& index)
 {
@@ -89,8 +88,8 @@ inline Surface_graph make_surface_graph(const Mesh_index& index)
     arcs.emplace_back(b, a);
     properties.push_back(arc);
   }
-  return Surface_graph(boost::edges_are_unsorted_multi_pass, arcs.begin(), arcs.end(),
-                       properties.begin(), static_cast<std::size_t>(index.number_of_vertices()));
+  return Surface_graph(boost::edges_are_unsorted_multi_pass, arcs.begin(), arcs.end(), properties.begin(),
+                       static_cast<std::size_t>(index.number_of_vertices()));
 }
 
 /// Records, when Dijkstra relaxes an arc, the mesh edge to the parent and the label of the
@@ -114,20 +113,18 @@ struct Forest_recorder
 /// Multi-source shortest-path forest: `distance` to the nearest source, `parent_edge` towards
 /// it (-1 at the sources) and the source's `label` (preset at the sources, copied down).
 inline void shortest_path_forest(const Surface_graph& graph, const std::vector<std::size_t>& sources,
-                                 std::vector<double>& distance, std::vector<int>& parent_edge,
-                                 std::vector<int>& label)
+                                 std::vector<double>& distance, std::vector<int>& parent_edge, std::vector<int>& label)
 {
   const std::size_t n = num_vertices(graph);
   distance.assign(n, std::numeric_limits<double>::max());
   parent_edge.assign(n, -1);
   label.resize(n, -1);
   const auto vertex_index = get(boost::vertex_index, graph);
-  boost::dijkstra_shortest_paths(
-    graph, sources.begin(), sources.end(), boost::dummy_property_map(),
-    boost::make_iterator_property_map(distance.begin(), vertex_index),
-    get(&Surface_arc::length, graph), vertex_index, std::less<double>(),
-    boost::closed_plus<double>(), std::numeric_limits<double>::max(), 0.0,
-    boost::make_dijkstra_visitor(Forest_recorder{&parent_edge, &label}));
+  boost::dijkstra_shortest_paths(graph, sources.begin(), sources.end(), boost::dummy_property_map(),
+                                 boost::make_iterator_property_map(distance.begin(), vertex_index),
+                                 get(&Surface_arc::length, graph), vertex_index, std::less<double>(),
+                                 boost::closed_plus<double>(), std::numeric_limits<double>::max(), 0.0,
+                                 boost::make_dijkstra_visitor(Forest_recorder{&parent_edge, &label}));
 }
 
 inline int opposite_end(const Mesh_index& index, int e, int v)
@@ -154,8 +151,8 @@ inline void mark_path_to_source(const Mesh_index& index, const std::vector<int>&
 /// One search instead of one per terminal, and the same factor-2 bound as growing the tree
 /// terminal by terminal. Paths never cross a border vertex (each is the source of its loop's
 /// region), so no path closes a loop with a border. Returns the number of seam edges added.
-inline int join_terminals(const Mesh_index& index, const Surface_graph& graph,
-                          const std::vector<int>& interior_cones, std::vector<char>& is_seam)
+inline int join_terminals(const Mesh_index& index, const Surface_graph& graph, const std::vector<int>& interior_cones,
+                          std::vector<char>& is_seam)
 {
   const int loops = index.number_of_boundary_loops();
   const int terminals = loops + static_cast<int>(interior_cones.size());
@@ -179,11 +176,11 @@ inline int join_terminals(const Mesh_index& index, const Surface_graph& graph,
   std::vector<int> parent_edge;
   shortest_path_forest(graph, sources, distance, parent_edge, label);
 
-  std::vector<std::pair<double, int>> bridges;  // (terminal-to-terminal length, edge)
+  std::vector<std::pair<double, int>> bridges; // (terminal-to-terminal length, edge)
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const int a = index.edges[e][0], b = index.edges[e][1];
-    if(label[a] != label[b] && label[a] >= 0 && label[b] >= 0)  // -1: unreachable, a second component
+    if(label[a] != label[b] && label[a] >= 0 && label[b] >= 0) // -1: unreachable, a second component
       bridges.emplace_back(distance[a] + edge_length(index, e) + distance[b], e);
   }
   std::sort(bridges.begin(), bridges.end());
@@ -228,7 +225,7 @@ inline int add_homology_generators(const Mesh_index& index, const Surface_graph&
     if(on_cut[v])
       sources.push_back(static_cast<std::size_t>(v));
   if(sources.empty())
-    sources.push_back(0);  // closed, no cone: any root will do
+    sources.push_back(0); // closed, no cone: any root will do
 
   std::vector<double> distance;
   std::vector<int> parent_edge, label;
@@ -277,8 +274,8 @@ inline int add_homology_generators(const Mesh_index& index, const Surface_graph&
 
 /// Repeatedly removes the seam edge at a vertex of seam-degree 1 that is neither a cone nor
 /// on the border. Returns the number of edges removed.
-inline int prune_dangling_seams(const Mesh_index& index, const Surface_graph& graph,
-                                const std::vector<char>& is_cone, std::vector<char>& is_seam)
+inline int prune_dangling_seams(const Mesh_index& index, const Surface_graph& graph, const std::vector<char>& is_cone,
+                                std::vector<char>& is_seam)
 {
   std::vector<int> degree = seam_degrees(index, is_seam);
   const auto dangling = [&](int v) {
@@ -318,8 +315,7 @@ inline int prune_dangling_seams(const Mesh_index& index, const Surface_graph& gr
 inline void split_lone_seam_edges(const Mesh_index& index, std::vector<char>& is_seam)
 {
   std::vector<int> degree = seam_degrees(index, is_seam);
-  for(int e = find_lone_seam_edge(index, is_seam, degree); e >= 0;
-      e = find_lone_seam_edge(index, is_seam, degree))
+  for(int e = find_lone_seam_edge(index, is_seam, degree); e >= 0; e = find_lone_seam_edge(index, is_seam, degree))
   {
     const int f = index.edge_faces[e][0];
     is_seam[e] = 0;
@@ -358,7 +354,8 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
   result.number_of_terminals = index.number_of_boundary_loops() + static_cast<int>(interior_cones.size());
   if(index.number_of_boundary_loops() == 0 && index.genus() == 0 && interior_cones.size() < 2)
   {
-    result.status = Status::wrong_parameter("a closed genus-0 surface needs at least 2 cones to be cut into a disk, got " +
+    result.status =
+      Status::wrong_parameter("a closed genus-0 surface needs at least 2 cones to be cut into a disk, got " +
                               std::to_string(interior_cones.size()));
     return result;
   }
@@ -377,9 +374,8 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
     if(result.number_of_generators != 2 * index.genus())
     {
       result.status = not_a_disk("tree-cotree found " + std::to_string(result.number_of_generators) +
-                                " homology generators on a surface of genus " +
-                                std::to_string(index.genus()) + " (expected " +
-                                std::to_string(2 * index.genus()) + ")");
+                                 " homology generators on a surface of genus " + std::to_string(index.genus()) +
+                                 " (expected " + std::to_string(2 * index.genus()) + ")");
       return result;
     }
   }
@@ -400,8 +396,7 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
 /// Takes the user's seams (`user_seams`, per edge) as given, no cones needed, and checks that
 /// they cut the surface into one disk through every cone of `is_cone` (empty means none).
 /// Nothing is added or pruned: a dangling seam is a slit the user asked for.
-inline Cut_graph_result cut_graph_from_seams(const internal::Mesh_index& index,
-                                             const std::vector<char>& user_seams,
+inline Cut_graph_result cut_graph_from_seams(const internal::Mesh_index& index, const std::vector<char>& user_seams,
                                              const std::vector<char>& is_cone = {})
 {
   Cut_graph_result result;

@@ -31,8 +31,8 @@ namespace ICM {
 struct Cut_mesh
 {
   internal::Mesh_index disk;
-  std::vector<int> surface_vertex;            ///< disk vertex (wedge) -> surface vertex
-  std::vector<int> surface_edge;              ///< disk edge -> surface edge
+  std::vector<int> surface_vertex; ///< disk vertex (wedge) -> surface vertex
+  std::vector<int> surface_edge;   ///< disk edge -> surface edge
   /// surface edge -> its disk edges: the side in `edge_faces[e][0]`, then the side in
   /// `edge_faces[e][1]` on a seam edge (-1 off the cut, where one disk edge serves both faces)
   std::vector<std::array<int, 2>> disk_edges;
@@ -86,7 +86,10 @@ private:
   std::vector<int> size_;
 };
 
-inline bool is_surface_border_edge(const Mesh_index& index, int e) { return index.edge_faces[e][1] < 0; }
+inline bool is_surface_border_edge(const Mesh_index& index, int e)
+{
+  return index.edge_faces[e][1] < 0;
+}
 
 /// A seam edge whose two ends are interior and on no other seam edge: its two sides would
 /// join the same two wedges, a two-edge border no triangle mesh can hold.
@@ -96,8 +99,7 @@ inline int find_lone_seam_edge(const Mesh_index& index, const std::vector<char>&
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const int a = index.edges[e][0], b = index.edges[e][1];
-    if(is_seam[e] && degree[a] == 1 && degree[b] == 1 && !index.is_boundary_vertex[a] &&
-       !index.is_boundary_vertex[b])
+    if(is_seam[e] && degree[a] == 1 && degree[b] == 1 && !index.is_boundary_vertex[a] && !index.is_boundary_vertex[b])
       return e;
   }
   return -1;
@@ -108,8 +110,8 @@ inline int find_lone_seam_edge(const Mesh_index& index, const std::vector<char>&
 /// that starts a new wedge at every seam or border edge, done for all vertices at once.
 struct Wedges
 {
-  std::vector<std::array<int, 3>> of_corner;  ///< wedge of corner (f, c)
-  std::vector<int> surface_vertex;            ///< wedge -> surface vertex
+  std::vector<std::array<int, 3>> of_corner; ///< wedge of corner (f, c)
+  std::vector<int> surface_vertex;           ///< wedge -> surface vertex
   int size() const { return static_cast<int>(surface_vertex.size()); }
 };
 
@@ -160,13 +162,12 @@ struct Cut_topology
 {
   int pieces = 0;
   int boundary_loops = 0;
-  int euler_characteristic = 0;  // of all pieces together
+  int euler_characteristic = 0; // of all pieces together
   /// Genus of the cut surface (meaningful for one piece): chi = 2 - 2g - b.
   int genus() const { return (2 - euler_characteristic - boundary_loops) / 2; }
 };
 
-inline Cut_topology cut_topology(const Mesh_index& index, const std::vector<char>& is_seam,
-                                 const Wedges& wedges)
+inline Cut_topology cut_topology(const Mesh_index& index, const std::vector<char>& is_seam, const Wedges& wedges)
 {
   const int nf = index.number_of_faces(), ne = index.number_of_edges();
   Cut_topology topology;
@@ -219,8 +220,8 @@ inline std::string describe_seam_edge(const Mesh_index& index, int e)
 inline Status check_cone_flags(const Mesh_index& index, const std::vector<char>& is_cone)
 {
   if(!is_cone.empty() && static_cast<int>(is_cone.size()) != index.number_of_vertices())
-    return Status::wrong_parameter("the cone flags have " + std::to_string(is_cone.size()) +
-                     " entries, the mesh has " + std::to_string(index.number_of_vertices()) + " vertices");
+    return Status::wrong_parameter("the cone flags have " + std::to_string(is_cone.size()) + " entries, the mesh has " +
+                                   std::to_string(index.number_of_vertices()) + " vertices");
   return {};
 }
 
@@ -232,21 +233,20 @@ inline Status check_cone_flags(const Mesh_index& index, const std::vector<char>&
 /// The message names the first failure: a malformed seam, a cone off the cut, or the pieces,
 /// genus and boundary loops the cut leaves.
 inline Status check_cut_graph(const internal::Mesh_index& index, const std::vector<char>& is_seam,
-                                  const std::vector<char>& is_cone = {})
+                              const std::vector<char>& is_cone = {})
 {
   using namespace internal::cutting;
   if(index.number_of_faces() == 0)
     return Status::failure(CGAL::Surface_mesh_parameterization::ERROR_EMPTY_MESH, "the mesh has no faces");
   if(static_cast<int>(is_seam.size()) != index.number_of_edges())
     return Status::wrong_parameter("the seam flags have " + std::to_string(is_seam.size()) + " entries, the mesh has " +
-                     plural(index.number_of_edges(), "edge"));
+                                   plural(index.number_of_edges(), "edge"));
   Status status = check_cone_flags(index, is_cone);
   if(!status.ok())
     return status;
   for(int e = 0; e < index.number_of_edges(); ++e)
     if(is_seam[e] && is_surface_border_edge(index, e))
-      return not_a_disk("a seam edge is a border edge: " + describe_seam_edge(index, e) +
-                       " is on the border already");
+      return not_a_disk("a seam edge is a border edge: " + describe_seam_edge(index, e) + " is on the border already");
 
   const std::vector<int> degree = internal::seam_degrees(index, is_seam);
   for(int v = 0; v < index.number_of_vertices(); ++v)
@@ -255,8 +255,8 @@ inline Status check_cut_graph(const internal::Mesh_index& index, const std::vect
   const int lone = find_lone_seam_edge(index, is_seam, degree);
   if(lone >= 0)
     return not_a_disk("seam " + describe_seam_edge(index, lone) +
-                     " touches no other seam nor the border: its two sides would be one edge "
-                     "(cut along a path of at least two edges)");
+                      " touches no other seam nor the border: its two sides would be one edge "
+                      "(cut along a path of at least two edges)");
 
   const Cut_topology topology = cut_topology(index, is_seam, cut_wedges(index, is_seam));
   const int seams = static_cast<int>(std::count(is_seam.begin(), is_seam.end(), char(1)));
@@ -264,17 +264,16 @@ inline Status check_cut_graph(const internal::Mesh_index& index, const std::vect
     return not_a_disk("the seams cut the surface into " + std::to_string(topology.pieces) + " pieces");
   if(topology.boundary_loops == 0)
     return not_a_disk(std::string(seams == 0 ? "there are no seams" : "the seams cut nothing open") +
-                     " and the surface is closed (genus " + std::to_string(index.genus()) +
-                     "): nothing to lay out as a disk");
+                      " and the surface is closed (genus " + std::to_string(index.genus()) +
+                      "): nothing to lay out as a disk");
   if(topology.genus() > 0)
-    return not_a_disk("the seams leave genus " + std::to_string(topology.genus()) +
-                     (topology.boundary_loops > 1
-                        ? " and " + plural(topology.boundary_loops, "boundary loop")
-                        : std::string()) +
-                     " (a disk has genus 0 and one boundary loop)");
+    return not_a_disk(
+      "the seams leave genus " + std::to_string(topology.genus()) +
+      (topology.boundary_loops > 1 ? " and " + plural(topology.boundary_loops, "boundary loop") : std::string()) +
+      " (a disk has genus 0 and one boundary loop)");
   if(topology.boundary_loops > 1)
     return not_a_disk("the seams leave " + plural(topology.boundary_loops, "boundary loop") +
-                     " (a disk has one): they must join every border");
+                      " (a disk has one): they must join every border");
   return {};
 }
 

@@ -28,14 +28,14 @@
 #include <vector>
 
 #ifdef _WIN32
-#  include <fcntl.h>
-#  include <io.h>
-#  include <process.h>
-#  include <sys/stat.h>
+#include <fcntl.h>
+#include <io.h>
+#include <process.h>
+#include <sys/stat.h>
 #else
-#  include <fcntl.h>
-#  include <signal.h>
-#  include <unistd.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
 #endif
 
 namespace ICM {
@@ -128,7 +128,12 @@ struct Temporary_registry
 {
   static constexpr std::size_t slots = 16;
   static constexpr std::size_t path_size = 4096;
-  enum State : int { Free, Filling, Live };
+  enum State : int
+  {
+    Free,
+    Filling,
+    Live
+  };
   std::atomic<int> state[slots];
   char path[slots][path_size];
 };
@@ -154,7 +159,10 @@ inline void remove_registered_temporaries()
 /// What SIGINT and SIGTERM did before the handler below was installed.
 inline struct sigaction previous_signal_actions[2];
 
-inline int signal_slot(int sig) { return sig == SIGINT ? 0 : 1; }
+inline int signal_slot(int sig)
+{
+  return sig == SIGINT ? 0 : 1;
+}
 
 /// Removes the live temporaries, then does what the signal did before: the previous handler,
 /// or the default action (the signal is raised again with the default disposition, so the
@@ -196,7 +204,8 @@ inline void install_temporary_cleanup()
     if(::sigaction(sig, nullptr, &current) != 0)
       continue;
     const bool has_info = (current.sa_flags & SA_SIGINFO) != 0;
-    if((has_info && current.sa_sigaction == remove_temporaries_on_signal) || (!has_info && current.sa_handler == SIG_IGN))
+    if((has_info && current.sa_sigaction == remove_temporaries_on_signal) ||
+       (!has_info && current.sa_handler == SIG_IGN))
       continue;
     struct sigaction action;
     std::memset(&action, 0, sizeof action);
@@ -269,11 +278,13 @@ public:
   {
     static std::atomic<unsigned long> counter{0};
     int err = 0;
-    for(int attempt = 0; attempt < 100; ++attempt) {
-      const std::string name = target + ".tmp" + std::to_string(current_process_id()) + "." +
-                               std::to_string(counter.fetch_add(1));
+    for(int attempt = 0; attempt < 100; ++attempt)
+    {
+      const std::string name =
+        target + ".tmp" + std::to_string(current_process_id()) + "." + std::to_string(counter.fetch_add(1));
       errno = 0;
-      if(create_new_file(name)) {
+      if(create_new_file(name))
+      {
         name_ = name;
         registered_.hold(name_);
         return true;
@@ -294,17 +305,23 @@ public:
     std::ofstream out;
     errno = 0;
     out.open(name_, std::ios::out | std::ios::binary | std::ios::trunc);
-    if(!out.is_open()) {
+    if(!out.is_open())
+    {
       reason = errno_message(errno, "cannot open a temporary file");
       return false;
     }
     out.imbue(std::locale::classic());
-    try {
+    try
+    {
       ok = body(out);
-    } catch(const std::exception& e) {
+    }
+    catch(const std::exception& e)
+    {
       reason = std::string("writer failed: ") + e.what();
       return false;
-    } catch(...) {
+    }
+    catch(...)
+    {
       reason = "writer failed with an unknown exception";
       return false;
     }
@@ -314,11 +331,13 @@ public:
     out.close();
     if(write_err == 0)
       write_err = errno;
-    if(out.fail()) {
+    if(out.fail())
+    {
       reason = errno_message(write_err, "output error");
       return false;
     }
-    if(!ok) {
+    if(!ok)
+    {
       reason = "the writer reported a failure";
       return false;
     }
@@ -330,7 +349,8 @@ public:
   {
     std::error_code ec;
     std::filesystem::rename(name_, target, ec);
-    if(ec) {
+    if(ec)
+    {
       reason = ec.message();
       return false;
     }
@@ -369,19 +389,24 @@ private:
 /// reported the same way.
 inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, std::string& error)
 {
-  for(std::size_t i = 0; i < outputs.size(); ++i) {
-    if(outputs[i].path.empty()) {
+  for(std::size_t i = 0; i < outputs.size(); ++i)
+  {
+    if(outputs[i].path.empty())
+    {
       error = "cannot write an output file with an empty name";
       return false;
     }
-    for(std::size_t j = 0; j < i; ++j) {
-      if(same_file(outputs[i].path, outputs[j].path)) {
+    for(std::size_t j = 0; j < i; ++j)
+    {
+      if(same_file(outputs[i].path, outputs[j].path))
+      {
         error = "cannot write '" + outputs[i].path + "' twice (two outputs name the same file)";
         return false;
       }
     }
     const std::string refusal = replace_refusal(outputs[i].path);
-    if(!refusal.empty()) {
+    if(!refusal.empty())
+    {
       error = "cannot write '" + outputs[i].path + "': " + refusal;
       return false;
     }
@@ -390,7 +415,8 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
   std::vector<Temporary_file> temporaries(outputs.size());
   std::string reason;
   for(std::size_t i = 0; i < outputs.size(); ++i)
-    if(!temporaries[i].create(outputs[i].path, reason) || !temporaries[i].write(outputs[i].body, reason)) {
+    if(!temporaries[i].create(outputs[i].path, reason) || !temporaries[i].write(outputs[i].body, reason))
+    {
       error = "cannot write '" + outputs[i].path + "': " + reason;
       return false; // the destructors remove every temporary
     }
@@ -404,13 +430,15 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
   };
   std::vector<Previous> previous(outputs.size());
   auto drop_backups = [&]() {
-    for(Previous& p : previous) {
+    for(Previous& p : previous)
+    {
       if(!p.backup.empty())
         std::remove(p.backup.c_str());
       p.registered.release();
     }
   };
-  for(std::size_t i = 0; i < outputs.size() && outputs.size() > 1; ++i) {
+  for(std::size_t i = 0; i < outputs.size() && outputs.size() > 1; ++i)
+  {
     std::error_code ec;
     previous[i].existed = std::filesystem::exists(std::filesystem::symlink_status(outputs[i].path, ec));
     if(!previous[i].existed)
@@ -421,23 +449,29 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
     const std::string backup = name.name();
     name.discard();
     std::filesystem::create_hard_link(outputs[i].path, backup, ec);
-    if(!ec) {
+    if(!ec)
+    {
       previous[i].backup = backup;
       previous[i].registered.hold(backup);
     }
   }
-  for(std::size_t i = 0; i < outputs.size(); ++i) {
+  for(std::size_t i = 0; i < outputs.size(); ++i)
+  {
     if(temporaries[i].rename_to(outputs[i].path, reason))
       continue;
-    for(std::size_t j = 0; j < i; ++j) {
+    for(std::size_t j = 0; j < i; ++j)
+    {
       std::error_code ec;
-      if(!previous[j].backup.empty()) {
+      if(!previous[j].backup.empty())
+      {
         std::filesystem::rename(previous[j].backup, outputs[j].path, ec);
-        if(!ec) {
+        if(!ec)
+        {
           previous[j].backup.clear();
           previous[j].registered.release();
         }
-      } else if(!previous[j].existed)
+      }
+      else if(!previous[j].existed)
         std::filesystem::remove(outputs[j].path, ec);
     }
     drop_backups();
@@ -461,8 +495,7 @@ inline bool write_files_atomically(const std::vector<Atomic_output>& outputs, st
 /// previous content), `error` gets a one-line reason and the function returns false. A
 /// read-only `path` is refused, not replaced. The replaced file gets default permissions,
 /// and a symbolic link at `path` is replaced by a regular file rather than followed.
-inline bool write_file_atomically(const std::string& path,
-                                  const std::function<bool(std::ostream&)>& body,
+inline bool write_file_atomically(const std::string& path, const std::function<bool(std::ostream&)>& body,
                                   std::string& error)
 {
   return write_files_atomically({Atomic_output{path, body}}, error);

@@ -73,9 +73,8 @@ struct Is_simplicial_cholesky : std::is_base_of<Eigen::SimplicialCholeskyBase<T>
 
 /// The metric of the second argument: ICM's default when it is a border parameterizer.
 template <class Argument>
-using Metric_argument =
-  std::conditional_t<Is_border_parameterizer<Argument>::value, Default_metric,
-                     typename CGAL::Default::Get<Argument, Default_metric>::type>;
+using Metric_argument = std::conditional_t<Is_border_parameterizer<Argument>::value, Default_metric,
+                                           typename CGAL::Default::Get<Argument, Default_metric>::type>;
 
 /// The solver of the third argument (see the file comment).
 template <class Argument, class = void>
@@ -99,10 +98,10 @@ struct Border_condition_argument
 template <class Second>
 struct Border_condition_argument<CGAL::Default, Second, std::enable_if_t<Is_border_parameterizer<Second>::value>>
 {
-  using type = std::conditional_t<
-    std::is_same<Second, CGAL::Surface_mesh_parameterization::Two_vertices_parameterizer_3<
-                           typename Second::Triangle_mesh>>::value,
-    Free_border, Border_shape<Second>>;
+  using type =
+    std::conditional_t<std::is_same<Second, CGAL::Surface_mesh_parameterization::Two_vertices_parameterizer_3<
+                                              typename Second::Triangle_mesh>>::value,
+                       Free_border, Border_shape<Second>>;
 };
 
 /// The border condition made from a CGAL border parameterizer object.

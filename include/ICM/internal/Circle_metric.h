@@ -50,8 +50,7 @@ inline std::vector<double> euclidean_edge_lengths(const Mesh_index& index)
 /// One radius per vertex from its corner radii (see `Initial_radius`). A vertex whose corner
 /// values are all non-positive (only possible on numerically degenerate faces) gets half its
 /// shortest edge; `fallbacks` counts them.
-inline std::vector<double> vertex_radii_from_corners(const Mesh_index& index,
-                                                     const std::vector<double>& lengths,
+inline std::vector<double> vertex_radii_from_corners(const Mesh_index& index, const std::vector<double>& lengths,
                                                      Initial_radius rule, int& fallbacks)
 {
   const int nv = index.number_of_vertices();
@@ -59,7 +58,7 @@ inline std::vector<double> vertex_radii_from_corners(const Mesh_index& index,
   for(const auto& f : index.faces)
     for(int v : f)
       ++degree[v];
-  const double start = rule == Initial_radius::Max_corner ? -std::numeric_limits<double>::infinity()
+  const double start = rule == Initial_radius::Max_corner   ? -std::numeric_limits<double>::infinity()
                        : rule == Initial_radius::Min_corner ? std::numeric_limits<double>::infinity()
                                                             : 0.0;
   std::vector<double> radius(nv, start);
@@ -73,9 +72,15 @@ inline std::vector<double> vertex_radii_from_corners(const Mesh_index& index,
       const int v = index.faces[f][c];
       switch(rule)
       {
-      case Initial_radius::Max_corner: radius[v] = std::max(radius[v], corner); break;
-      case Initial_radius::Min_corner: radius[v] = std::min(radius[v], corner); break;
-      case Initial_radius::Mean_corner: radius[v] += corner / degree[v]; break;
+      case Initial_radius::Max_corner:
+        radius[v] = std::max(radius[v], corner);
+        break;
+      case Initial_radius::Min_corner:
+        radius[v] = std::min(radius[v], corner);
+        break;
+      case Initial_radius::Mean_corner:
+        radius[v] += corner / degree[v];
+        break;
       }
     }
   std::vector<double> shortest(nv, std::numeric_limits<double>::infinity());
@@ -97,8 +102,8 @@ inline std::vector<double> vertex_radii_from_corners(const Mesh_index& index,
 class Circle_metric
 {
 public:
-  Eigen::VectorXd u0;                              ///< log radii of the initial circles
-  std::vector<double> inversive_distance;          ///< per edge, I_ij
+  Eigen::VectorXd u0;                               ///< log radii of the initial circles
+  std::vector<double> inversive_distance;           ///< per edge, I_ij
   std::vector<double> one_minus_inversive_distance; ///< per edge, 1 - I_ij, kept exact near I = 1
 
   /// Length of edge `e` for the radii `gi`, `gj` (= exp(u)) of its endpoints.
@@ -140,10 +145,10 @@ public:
       const int p = g[a] <= g[b] ? a : b, q = a + b - p; // p: the smaller circle of edge pq
       // The radical axis of pq crosses side pq at distance along_pq = g_p - inside_pq from p.
       const double I_pq = I[e[c]], I_pr = I[e[q]];
-      const double inside_pq = g[p] * g[q] * g[q] * one_minus_I[e[c]] * (1.0 + I_pq) /
-                               (l[c] * (l[c] + g[p] + g[q] * I_pq));
-      const double inside_pr = g[p] * g[c] * g[c] * one_minus_I[e[q]] * (1.0 + I_pr) /
-                               (l[q] * (l[q] + g[p] + g[c] * I_pr));
+      const double inside_pq =
+        g[p] * g[q] * g[q] * one_minus_I[e[c]] * (1.0 + I_pq) / (l[c] * (l[c] + g[p] + g[q] * I_pq));
+      const double inside_pr =
+        g[p] * g[c] * g[c] * one_minus_I[e[q]] * (1.0 + I_pr) / (l[q] * (l[q] + g[p] + g[c] * I_pr));
       const double along_pq = g[p] * (g[p] + g[q] * I_pq) / l[c];
       // h = (along_pr - along_pq cos theta_p) / sin theta_p, with sin theta_p = 2 A / (l_pq l_pr)
       // and the difference regrouped so that thin faces and tangent circles do not cancel.

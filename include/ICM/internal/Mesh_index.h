@@ -48,23 +48,20 @@ struct Mesh_index
   /// Per vertex, normalised by `normalisation` when built by `index_mesh()`: lengths and
   /// UVs computed from them are in units of `normalisation.scale`.
   std::vector<std::array<double, 3>> points;
-  Normalisation normalisation;                   // identity unless built by index_mesh()
-  std::vector<std::array<int, 3>> faces;         // vertex indices, input orientation
-  std::vector<std::array<int, 3>> face_edges;    // edge opposite each corner
-  std::vector<std::array<int, 2>> edges;         // endpoints, first < second
-  std::vector<std::array<int, 2>> edge_faces;    // incident faces, second = -1 on the border
+  Normalisation normalisation;                // identity unless built by index_mesh()
+  std::vector<std::array<int, 3>> faces;      // vertex indices, input orientation
+  std::vector<std::array<int, 3>> face_edges; // edge opposite each corner
+  std::vector<std::array<int, 2>> edges;      // endpoints, first < second
+  std::vector<std::array<int, 2>> edge_faces; // incident faces, second = -1 on the border
   std::vector<char> is_boundary_vertex;
-  std::vector<std::vector<int>> boundary_loops;  // vertices in the order of the border halfedges
+  std::vector<std::vector<int>> boundary_loops;      // vertices in the order of the border halfedges
   std::vector<std::vector<int>> boundary_loop_edges; // edge from loop[i] to loop[i+1]
 
   int number_of_vertices() const { return static_cast<int>(points.size()); }
   int number_of_faces() const { return static_cast<int>(faces.size()); }
   int number_of_edges() const { return static_cast<int>(edges.size()); }
   int number_of_boundary_loops() const { return static_cast<int>(boundary_loops.size()); }
-  int euler_characteristic() const
-  {
-    return number_of_vertices() - number_of_edges() + number_of_faces();
-  }
+  int euler_characteristic() const { return number_of_vertices() - number_of_edges() + number_of_faces(); }
   /// Genus of the (connected, orientable) surface: chi = 2 - 2g - b.
   int genus() const { return (2 - euler_characteristic() - number_of_boundary_loops()) / 2; }
   bool is_disk() const { return number_of_boundary_loops() == 1 && genus() == 0; }
@@ -74,8 +71,8 @@ struct Mesh_index
 inline std::string describe_topology(const Mesh_index& index)
 {
   std::ostringstream out;
-  out << index.number_of_boundary_loops() << " boundary loop"
-      << (index.number_of_boundary_loops() == 1 ? "" : "s") << ", genus " << index.genus();
+  out << index.number_of_boundary_loops() << " boundary loop" << (index.number_of_boundary_loops() == 1 ? "" : "s")
+      << ", genus " << index.genus();
   return out.str();
 }
 
@@ -97,8 +94,7 @@ inline double squared_distance(const std::array<double, 3>& a, const std::array<
 /// The halfedges of `mesh`, sorted: whether a descriptor belongs to the mesh is then found
 /// by comparisons alone, never by dereferencing one that may be foreign or stale.
 template <class TriangleMesh>
-std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> sorted_halfedges(
-  const TriangleMesh& mesh)
+std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> sorted_halfedges(const TriangleMesh& mesh)
 {
   std::vector<typename boost::graph_traits<TriangleMesh>::halfedge_descriptor> all;
   for(auto h : halfedges(mesh))
@@ -130,8 +126,7 @@ inline int corner_of_vertex(const Mesh_index& index, int f, int v)
 /// that ends the wedge turning counter-clockwise around it (none for an uncut vertex). Two
 /// triangulations of one surface with the same vertices, border and seam edges (the mesh
 /// and an intrinsic triangulation of it) give their wedges the same keys.
-inline long long wedge_key(const Mesh_index& index, const std::vector<char>& is_seam,
-                           int f, int c)
+inline long long wedge_key(const Mesh_index& index, const std::vector<char>& is_seam, int f, int c)
 {
   const int v = index.faces[f][c];
   const long long base = static_cast<long long>(v) * (index.number_of_edges() + 1);
@@ -163,8 +158,8 @@ inline Status build_border(Mesh_index& index)
   using namespace CGAL::Surface_mesh_parameterization;
   const int nv = index.number_of_vertices();
   // A manifold vertex has one fan of faces: #edges == #faces inside, #faces + 1 on the border.
-  std::vector<int> vertex_faces(nv, 0), vertex_edges(nv, 0), border_out(nv, -1),
-    border_out_edge(nv, -1), border_out_count(nv, 0);
+  std::vector<int> vertex_faces(nv, 0), vertex_edges(nv, 0), border_out(nv, -1), border_out_edge(nv, -1),
+    border_out_count(nv, 0);
   for(const auto& f : index.faces)
     for(int v : f)
       ++vertex_faces[v];
@@ -214,7 +209,6 @@ inline Status build_border(Mesh_index& index)
   return {};
 }
 
-
 /// Builds edges, edge-face incidence, boundary flags and loops from `index.faces`.
 /// Edges come from sorting the corner pairs, so nothing here depends on the graph type.
 /// Fails on a non-manifold edge or vertex, which a halfedge graph can still encode at vertices.
@@ -253,8 +247,7 @@ inline Status build_connectivity(Mesh_index& index)
     while(t < sides.size() && sides[t][0] == sides[s][0] && sides[t][1] == sides[s][1])
       ++t;
     if(t - s > 2)
-      return {ERROR_NON_TRIANGULAR_MESH, "non-manifold edge shared by " + std::to_string(t - s) +
-                                           " faces"};
+      return {ERROR_NON_TRIANGULAR_MESH, "non-manifold edge shared by " + std::to_string(t - s) + " faces"};
     const int e = index.number_of_edges();
     index.edges.push_back({sides[s][0], sides[s][1]});
     index.edge_faces.push_back({sides[s][2], t - s == 2 ? sides[s + 1][2] : -1});
@@ -272,16 +265,14 @@ inline Status check_geometry(const Mesh_index& index)
   for(int v = 0; v < index.number_of_vertices(); ++v)
     for(double x : index.points[v])
       if(!std::isfinite(x))
-        return {ERROR_WRONG_PARAMETER,
-                "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
+        return {ERROR_WRONG_PARAMETER, "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
   int degenerate = 0, first = -1;
   for(int f = 0; f < index.number_of_faces(); ++f)
   {
     const auto& p = index.points;
     const auto& t = index.faces[f];
-    const double longest = std::max({squared_distance(p[t[0]], p[t[1]]),
-                                     squared_distance(p[t[1]], p[t[2]]),
-                                     squared_distance(p[t[2]], p[t[0]])});
+    const double longest = std::max(
+      {squared_distance(p[t[0]], p[t[1]]), squared_distance(p[t[1]], p[t[2]]), squared_distance(p[t[2]], p[t[0]])});
     // Relative to the face's own size: a sliver is fine, a face with no area is not.
     if(!(triangle_area(p[t[0]], p[t[1]], p[t[2]]) > 1e-14 * longest))
     {
@@ -291,9 +282,8 @@ inline Status check_geometry(const Mesh_index& index)
     }
   }
   if(degenerate > 0)
-    return {ERROR_WRONG_PARAMETER, std::to_string(degenerate) +
-                                     " degenerate (zero-area) face(s), the first is face " +
-                                     std::to_string(first)};
+    return {ERROR_WRONG_PARAMETER,
+            std::to_string(degenerate) + " degenerate (zero-area) face(s), the first is face " + std::to_string(first)};
   return {};
 }
 
@@ -337,14 +327,11 @@ faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<Triang
 /// frame), else centred and scaled to the component's own bounding box; UVs computed from
 /// the index are multiplied by `index.normalisation.scale` to be in the mesh's units.
 template <class TriangleMesh, class VertexPointMap>
-Status index_mesh(const TriangleMesh& mesh,
-                        typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
-                        VertexPointMap vpm, Mesh_index& index,
-                        std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&
-                          vertices,
-                        std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>*
-                          face_descriptors = nullptr,
-                        const Normalisation* normalisation = nullptr)
+Status index_mesh(const TriangleMesh& mesh, typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
+                  VertexPointMap vpm, Mesh_index& index,
+                  std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices,
+                  std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>* face_descriptors = nullptr,
+                  const Normalisation* normalisation = nullptr)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   using face_descriptor = typename boost::graph_traits<TriangleMesh>::face_descriptor;
@@ -382,8 +369,7 @@ Status index_mesh(const TriangleMesh& mesh,
         put(local, v, id);
         vertices.push_back(v);
         const auto& p = get(vpm, v);
-        index.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()),
-                                CGAL::to_double(p.z())});
+        index.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
       }
       tri[corners++] = id;
     }
@@ -396,8 +382,7 @@ Status index_mesh(const TriangleMesh& mesh,
   for(int v = 0; v < index.number_of_vertices(); ++v)
     for(double x : index.points[v])
       if(!std::isfinite(x))
-        return {ERROR_WRONG_PARAMETER,
-                "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
+        return {ERROR_WRONG_PARAMETER, "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)"};
   index.normalisation = normalisation ? *normalisation : normalisation_of(index.points);
   for(auto& p : index.points)
     p = index.normalisation.apply(p);

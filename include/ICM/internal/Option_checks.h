@@ -24,8 +24,8 @@ public:
 
   /// A finite number, > `low` (or >= it when `low_included`) and, when `high` is finite,
   /// < `high` (or <= it when `high_included`).
-  Option_checks& real(const char* name, double value, double low, bool low_included,
-                      double high = HUGE_VAL, bool high_included = false)
+  Option_checks& real(const char* name, double value, double low, bool low_included, double high = HUGE_VAL,
+                      bool high_included = false)
   {
     const bool above = low_included ? value >= low : value > low;
     const bool below = !std::isfinite(high) || (high_included ? value <= high : value < high);

@@ -216,7 +216,8 @@ inline Status cut_component(const Mesh_index& index, const std::vector<char>& is
   }
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() == 0 && interior_singular == 1)
     std::fill(is_cone.begin(), is_cone.end(), 0);
-  Cut_graph_result graph = user_seams.empty() ? cut_graph(index, is_cone) : cut_graph_from_seams(index, user_seams, is_cone);
+  Cut_graph_result graph =
+    user_seams.empty() ? cut_graph(index, is_cone) : cut_graph_from_seams(index, user_seams, is_cone);
   if(!graph.ok())
     return graph.status;
   chart.seam_edges = graph.number_of_seam_edges;
@@ -274,9 +275,8 @@ inline Status remove_component_overlaps(const Mesh_index& index, Chart_report& c
 template <class Metric, class Solver, class Energy>
 Status parameterize_component(const Mesh_index& index, const std::vector<char>& is_user_cone,
                               const std::vector<double>& prescribed, const std::vector<char>& user_seams,
-                              const Surface_parameterization_options& options,
-                              Surface_parameterization_report& report, Chart_report& chart, Cut_mesh& cut,
-                              std::vector<Uv>& uv, const Energy& energy,
+                              const Surface_parameterization_options& options, Surface_parameterization_report& report,
+                              Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy,
                               const Stage_progress& progress = Stage_progress())
 {
   progress("cones", 0.0);
@@ -400,8 +400,7 @@ void pack_and_write_charts(
       for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(chart_faces[c][f], mesh), mesh))
       {
         const Uv& p = chart_uvs[c][cuts[c].disk.faces[f][corner++]];
-        const Uv_point q(normalisation.scale * (p[0] + offsets[c][0]),
-                         normalisation.scale * (p[1] + offsets[c][1]));
+        const Uv_point q(normalisation.scale * (p[0] + offsets[c][0]), normalisation.scale * (p[1] + offsets[c][1]));
         put(uv_map, h, q);
         // The border halfedge into the same vertex, if any, shares this corner's wedge when
         // it is the corner next to the border.

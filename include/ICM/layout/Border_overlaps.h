@@ -57,14 +57,14 @@ namespace internal {
 
 /// A bounding box carrying the id of its edge or face. Ids are explicit because the box
 /// intersection sorts copies of the boxes, so addresses cannot identify them.
-using Overlap_box =
-  CGAL::Box_intersection_d::Box_with_info_d<double, 2, int, CGAL::Box_intersection_d::ID_EXPLICIT>;
+using Overlap_box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int, CGAL::Box_intersection_d::ID_EXPLICIT>;
 
 /// The side of r relative to the line pq (the sign of (q - p) x (r - p)), exactly.
 inline CGAL::Orientation orientation(const Uv& p, const Uv& q, const Uv& r)
 {
   using Interval = CGAL::Interval_nt<>;
-  const Interval d = (Interval(q[0]) - p[0]) * (Interval(r[1]) - p[1]) - (Interval(q[1]) - p[1]) * (Interval(r[0]) - p[0]);
+  const Interval d =
+    (Interval(q[0]) - p[0]) * (Interval(r[1]) - p[1]) - (Interval(q[1]) - p[1]) * (Interval(r[0]) - p[0]);
   if(d.inf() > 0)
     return CGAL::LEFT_TURN;
   if(d.sup() < 0)
@@ -101,16 +101,17 @@ inline bool segment_has_on(const Uv& r, const Uv& s, const Uv& p)
 inline void check_uv_input(const Mesh_index& index, const std::vector<Uv>& uv, const char* caller)
 {
   if(uv.size() != static_cast<std::size_t>(index.number_of_vertices()))
-    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(uv.size()) +
-                                " UVs for " + std::to_string(index.number_of_vertices()) +
-                                " vertices");
+    throw std::invalid_argument(std::string(caller) + ": " + std::to_string(uv.size()) + " UVs for " +
+                                std::to_string(index.number_of_vertices()) + " vertices");
   for(std::size_t v = 0; v < uv.size(); ++v)
     if(!std::isfinite(uv[v][0]) || !std::isfinite(uv[v][1]))
-      throw std::invalid_argument(std::string(caller) + ": vertex " + std::to_string(v) +
-                                  " has a non-finite UV");
+      throw std::invalid_argument(std::string(caller) + ": vertex " + std::to_string(v) + " has a non-finite UV");
 }
 
-inline CGAL::Bbox_2 point_box(const Uv& p) { return CGAL::Bbox_2(p[0], p[1], p[0], p[1]); }
+inline CGAL::Bbox_2 point_box(const Uv& p)
+{
+  return CGAL::Bbox_2(p[0], p[1], p[0], p[1]);
+}
 
 inline Overlap_box segment_box(const Uv& p, const Uv& q, int id)
 {
@@ -136,7 +137,7 @@ inline bool segments_meet(const Uv& p, const Uv& q, const Uv& r, const Uv& s)
   const int pq_r = orientation(p, q, r), pq_s = orientation(p, q, s);
   const int rs_p = orientation(r, s, p), rs_q = orientation(r, s, q);
   if(pq_r * pq_s > 0 || rs_p * rs_q > 0)
-    return false; // one segment lies strictly on one side of the other's line
+    return false;            // one segment lies strictly on one side of the other's line
   if(pq_r == 0 && pq_s == 0) // on one line: they meet where one holds an end of the other
     return segment_has_on(p, q, r) || segment_has_on(p, q, s) || segment_has_on(r, s, p);
   return true;
@@ -205,8 +206,7 @@ inline std::array<Uv, 3> uv_triangle(const Mesh_index& index, const std::vector<
 
 /// Face pairs of `faces` whose UV interiors overlap; stops after the first one when
 /// `first_only`.
-inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index,
-                                                      const std::vector<Uv>& uv,
+inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index, const std::vector<Uv>& uv,
                                                       const std::vector<int>& faces, bool first_only)
 {
   check_uv_input(index, uv, "face overlaps");
@@ -245,8 +245,7 @@ inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index,
 ///
 /// \pre `uv.size() == index.number_of_vertices()` and every UV is finite (else
 ///      std::invalid_argument).
-inline Border_overlaps count_border_overlaps(const internal::Mesh_index& index,
-                                             const std::vector<Uv>& uv)
+inline Border_overlaps count_border_overlaps(const internal::Mesh_index& index, const std::vector<Uv>& uv)
 {
   internal::check_uv_input(index, uv, "count_border_overlaps");
   std::vector<internal::Overlap_box> boxes;
@@ -256,12 +255,11 @@ inline Border_overlaps count_border_overlaps(const internal::Mesh_index& index,
 
   std::vector<std::pair<int, int>> pairs;
   // Closed boxes: an axis-parallel edge has a flat box, which must still meet its neighbours.
-  CGAL::box_self_intersection_d(
-    boxes.begin(), boxes.end(),
-    [&](const internal::Overlap_box& a, const internal::Overlap_box& b) {
-      if(internal::border_edges_meet(index, uv, a.info(), b.info()))
-        pairs.emplace_back(a.info(), b.info());
-    });
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
+                                [&](const internal::Overlap_box& a, const internal::Overlap_box& b) {
+                                  if(internal::border_edges_meet(index, uv, a.info(), b.info()))
+                                    pairs.emplace_back(a.info(), b.info());
+                                });
 
   Border_overlaps result;
   result.pairs = internal::normalized_pairs(std::move(pairs));
@@ -278,8 +276,7 @@ inline Border_overlaps count_border_overlaps(const internal::Mesh_index& index,
 /// \pre `uv.size() == index.number_of_vertices()`, every UV finite, every id of `faces` a
 ///      face of `index` (else std::invalid_argument).
 inline std::vector<std::pair<int, int>> overlapping_face_pairs(const internal::Mesh_index& index,
-                                                               const std::vector<Uv>& uv,
-                                                               const std::vector<int>& faces)
+                                                               const std::vector<Uv>& uv, const std::vector<int>& faces)
 {
   return internal::face_overlaps(index, uv, faces, false);
 }

@@ -56,8 +56,7 @@ struct Chart_placement
 
   Uv operator()(const Uv& p) const
   {
-    return rotated ? Uv{-p[1] + offset[0], p[0] + offset[1]}
-                   : Uv{p[0] + offset[0], p[1] + offset[1]};
+    return rotated ? Uv{-p[1] + offset[0], p[0] + offset[1]} : Uv{p[0] + offset[0], p[1] + offset[1]};
   }
 };
 
@@ -65,12 +64,15 @@ struct Chart_placement
 struct Chart_packing
 {
   std::vector<Chart_placement> placements;
-  double width = 0;  ///< the packed boxes lie in [0, width] x [0, height]
+  double width = 0; ///< the packed boxes lie in [0, width] x [0, height]
   double height = 0;
-  double gap = 0;    ///< the minimal distance between two packed boxes
+  double gap = 0; ///< the minimal distance between two packed boxes
 };
 
-inline bool is_empty_box(const Chart_box& box) { return !(box[0] <= box[2] && box[1] <= box[3]); }
+inline bool is_empty_box(const Chart_box& box)
+{
+  return !(box[0] <= box[2] && box[1] <= box[3]);
+}
 
 /// The bounding box of one chart's UVs; the empty box for an empty chart.
 inline Chart_box chart_bounding_box(const std::vector<Uv>& uv)
@@ -94,8 +96,7 @@ inline Chart_box placed_box(const Chart_box& box, const Chart_placement& placeme
   if(is_empty_box(box))
     return box;
   const Uv low = placement({box[0], box[1]}), high = placement({box[2], box[3]});
-  return {std::min(low[0], high[0]), std::min(low[1], high[1]), std::max(low[0], high[0]),
-          std::max(low[1], high[1])};
+  return {std::min(low[0], high[0]), std::min(low[1], high[1]), std::max(low[0], high[0]), std::max(low[1], high[1])};
 }
 
 namespace internal {
@@ -114,8 +115,7 @@ inline void check_boxes(const std::vector<Chart_box>& boxes)
   for(std::size_t i = 0; i < boxes.size(); ++i)
     for(double x : boxes[i])
       if(std::isnan(x) || (!is_empty_box(boxes[i]) && !std::isfinite(x)))
-        throw std::invalid_argument("shelf packing: chart " + std::to_string(i) +
-                                    " has a non-finite bounding box");
+        throw std::invalid_argument("shelf packing: chart " + std::to_string(i) + " has a non-finite bounding box");
 }
 
 inline double largest_side(const std::vector<Chart_box>& boxes)
@@ -157,9 +157,8 @@ inline Chart_placement placement_at(const Chart_box& box, bool rotated, double x
 }
 
 /// Fills rows no wider than `row_width` (a box wider than that gets a row of its own).
-inline Chart_packing fill_shelves(const std::vector<Chart_box>& boxes,
-                                  const std::vector<Shelf_item>& items, double row_width,
-                                  double gap)
+inline Chart_packing fill_shelves(const std::vector<Chart_box>& boxes, const std::vector<Shelf_item>& items,
+                                  double row_width, double gap)
 {
   Chart_packing packing;
   packing.placements.resize(boxes.size());
@@ -202,9 +201,8 @@ inline bool better_packing(const Chart_packing& a, const Chart_packing& b)
   return a.width * a.height < b.width * b.height;
 }
 
-inline Chart_packing best_shelf_packing(const std::vector<Chart_box>& boxes,
-                                        const std::vector<Shelf_item>& items, double gap,
-                                        double width_factor)
+inline Chart_packing best_shelf_packing(const std::vector<Chart_box>& boxes, const std::vector<Shelf_item>& items,
+                                        double gap, double width_factor)
 {
   const double side = std::sqrt(padded_area(items, gap));
   if(width_factor > 0)
@@ -225,18 +223,17 @@ inline Chart_packing best_shelf_packing(const std::vector<Chart_box>& boxes,
 /// Placement `i` is for box `i`; an empty box gets the identity. The packed boxes lie in
 /// `[0, width] x [0, height]`, pairwise at least `gap` apart.
 /// \pre every non-empty box is finite (else std::invalid_argument).
-inline Chart_packing shelf_pack_charts(const std::vector<Chart_box>& boxes,
-                                       const Shelf_packing_options& options = {})
+inline Chart_packing shelf_pack_charts(const std::vector<Chart_box>& boxes, const Shelf_packing_options& options = {})
 {
   internal::check_boxes(boxes);
   const double largest = internal::largest_side(boxes);
   const double gap = options.gap_ratio * (largest > 0 ? largest : 1.0);
-  Chart_packing best = internal::best_shelf_packing(
-    boxes, internal::sorted_items(boxes, false), gap, options.width_factor);
+  Chart_packing best =
+    internal::best_shelf_packing(boxes, internal::sorted_items(boxes, false), gap, options.width_factor);
   if(options.allow_rotation)
   {
-    Chart_packing flat = internal::best_shelf_packing(boxes, internal::sorted_items(boxes, true),
-                                                      gap, options.width_factor);
+    Chart_packing flat =
+      internal::best_shelf_packing(boxes, internal::sorted_items(boxes, true), gap, options.width_factor);
     if(internal::better_packing(flat, best))
       best = std::move(flat);
   }
@@ -258,8 +255,7 @@ inline std::vector<Uv> shelf_pack(const std::vector<Chart_box>& boxes, double ga
 }
 
 /// Moves every chart to its packed place, in place; returns the placements applied.
-inline Chart_packing pack_charts(std::vector<std::vector<Uv>>& charts,
-                                 const Shelf_packing_options& options = {})
+inline Chart_packing pack_charts(std::vector<std::vector<Uv>>& charts, const Shelf_packing_options& options = {})
 {
   std::vector<Chart_box> boxes;
   boxes.reserve(charts.size());

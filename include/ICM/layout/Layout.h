@@ -130,8 +130,7 @@ inline void place_corner(const std::array<int, 3>& w, int c, double l_ac, double
 template <class Angle>
 std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corners,
                                    const std::vector<std::array<int, 3>>& face_edges,
-                                   const std::vector<double>& lengths, const Angle& angle, int root,
-                                   std::vector<Uv>& z)
+                                   const std::vector<double>& lengths, const Angle& angle, int root, std::vector<Uv>& z)
 {
   const int points = static_cast<int>(z.size());
   std::vector<Unfolding_step> steps;
@@ -192,13 +191,13 @@ std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corner
 /// metric's own per-face angles (`Curvature_map::face_angles`), which keep full relative
 /// precision in faces whose radii differ by e^30; recomputed from the lengths, the tiny
 /// angles of such faces lose their digits.
-inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& index,
-                                                  const std::vector<double>& lengths,
+inline std::vector<Uv> layout_by_propagation_from(const internal::Mesh_index& index, const std::vector<double>& lengths,
                                                   const std::vector<Triangle_angles>& angles, int root)
 {
   std::vector<Uv> uv(index.number_of_vertices(), Uv{0.0, 0.0});
   if(index.number_of_faces() > 0)
-    unfold(index.faces, index.face_edges, lengths, [&](int f, int c) { return angles[f].angle[c]; }, root, uv);
+    unfold(
+      index.faces, index.face_edges, lengths, [&](int f, int c) { return angles[f].angle[c]; }, root, uv);
   return uv;
 }
 
@@ -218,8 +217,8 @@ inline int face_nearest_uv_centre(const internal::Mesh_index& index, const std::
   {
     double d[2];
     for(int i = 0; i < 2; ++i)
-      d[i] = (uv[index.faces[f][0]][i] + uv[index.faces[f][1]][i] + uv[index.faces[f][2]][i]) / 3 -
-             0.5 * (lo[i] + hi[i]);
+      d[i] =
+        (uv[index.faces[f][0]][i] + uv[index.faces[f][1]][i] + uv[index.faces[f][2]][i]) / 3 - 0.5 * (lo[i] + hi[i]);
     if(d[0] * d[0] + d[1] * d[1] < best_distance)
     {
       best_distance = d[0] * d[0] + d[1] * d[1];
@@ -243,8 +242,8 @@ inline void layout_border(const internal::Mesh_index& index, const std::vector<d
   std::vector<Uv> walk(m + 1);
   for(int s = 0; s < m; ++s)
   {
-    const int i = (m - s) % m;                 // current vertex, loop[0] first
-    const int previous = (i - 1 + m) % m;      // next vertex of the backward walk
+    const int i = (m - s) % m;            // current vertex, loop[0] first
+    const int previous = (i - 1 + m) % m; // next vertex of the backward walk
     walk[s] = {x, y};
     const double l = lengths[loop_edges[previous]];
     x += l * std::cos(heading);
@@ -266,9 +265,8 @@ inline void layout_border(const internal::Mesh_index& index, const std::vector<d
 /// a few refinements solve the system for the cost of a few triangular solves instead of a
 /// factorization; otherwise, or if refinement stalls, it is refactorized.
 template <class SparseSolver>
-bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double>& lengths,
-                     const Eigen::VectorXd& k, const std::vector<double>& w,
-                     Dynamic_laplacian<SparseSolver>& laplacian, std::vector<Uv>& uv,
+bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double>& lengths, const Eigen::VectorXd& k,
+                     const std::vector<double>& w, Dynamic_laplacian<SparseSolver>& laplacian, std::vector<Uv>& uv,
                      std::string& message)
 {
   uv.assign(index.number_of_vertices(), Uv{0.0, 0.0});
@@ -315,7 +313,7 @@ bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double
 /// What every layout is checked for.
 struct Layout_check
 {
-  int flipped_faces = 0;                  ///< faces with non-positive signed area
+  int flipped_faces = 0; ///< faces with non-positive signed area
   /// max_e |uv length - metric length| / metric length, after forgiving 64 units in the last
   /// place of the edge's coordinates: a nearly closed surface squeezes whole protrusions
   /// into 1e-12 of its hole, where an edge spans only millions of representable steps and
@@ -338,8 +336,8 @@ inline int count_flipped_faces(const internal::Mesh_index& index, const std::vec
   return flipped;
 }
 
-inline Layout_check check_layout(const internal::Mesh_index& index,
-                                 const std::vector<double>& lengths, const std::vector<Uv>& uv)
+inline Layout_check check_layout(const internal::Mesh_index& index, const std::vector<double>& lengths,
+                                 const std::vector<Uv>& uv)
 {
   Layout_check check;
   check.flipped_faces = count_flipped_faces(index, uv);
@@ -364,8 +362,7 @@ inline Layout_check check_layout(const internal::Mesh_index& index,
 /// in face hops. But a nearly closed disk squeezes most of its surface into a speck around
 /// that farthest face, which only keeps its digits near the origin, where re-rooting would
 /// lose them: the more exact of the two layouts is kept.
-inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index,
-                                             const std::vector<double>& lengths,
+inline std::vector<Uv> layout_by_propagation(const internal::Mesh_index& index, const std::vector<double>& lengths,
                                              const std::vector<Triangle_angles>& angles)
 {
   std::vector<Uv> first = layout_by_propagation_from(index, lengths, angles, central_face(index));

@@ -38,8 +38,8 @@ namespace ICM {
 /// What `remove_overlaps` did to one chart.
 struct Overlap_removal
 {
-  int pieces = 1;              ///< pieces the chart was cut into (1: it did not overlap)
-  int cut_edges = 0;           ///< surface edges that became seams
+  int pieces = 1;                 ///< pieces the chart was cut into (1: it did not overlap)
+  int cut_edges = 0;              ///< surface edges that became seams
   int overlapping_face_pairs = 0; ///< face pairs still overlapping inside a piece (0 unless `max_cuts` ran out)
 };
 
@@ -73,8 +73,8 @@ inline void add_arc(Flow_graph& g, int a, int b, Capacity capacity)
 /// `sinks` in the dual graph of the piece (faces joined through their interior edges whose
 /// both faces are in the piece), each dual edge weighted by its 3D length.
 inline std::vector<int> source_side_of_minimum_cut(const Mesh_index& disk, const std::vector<int>& piece_of_face,
-                                                   const std::vector<int>& piece_faces,
-                                                   const std::vector<int>& sources, const std::vector<int>& sinks)
+                                                   const std::vector<int>& piece_faces, const std::vector<int>& sources,
+                                                   const std::vector<int>& sinks)
 {
   const int piece = piece_of_face[piece_faces.front()];
   std::vector<int> node_of_face(disk.number_of_faces(), -1);
@@ -154,8 +154,9 @@ inline int connected_pieces(const Mesh_index& disk, std::vector<int>& piece_of_f
 /// One pair of layers to separate inside a piece: the overlapping faces of the piece grouped
 /// into edge-connected layers; the two layers with the most overlapping face pairs between
 /// them (one face against the other when a layer overlaps itself).
-inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(
-  const Mesh_index& disk, const std::vector<int>& piece_of_face, const std::vector<std::pair<int, int>>& pairs)
+inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(const Mesh_index& disk,
+                                                                        const std::vector<int>& piece_of_face,
+                                                                        const std::vector<std::pair<int, int>>& pairs)
 {
   std::vector<char> overlapping(disk.number_of_faces(), 0);
   for(const auto& [f, g] : pairs)
@@ -174,8 +175,8 @@ inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(
     ++count[{std::min(a, b), std::max(a, b)}];
   }
   const auto strongest = std::max_element(count.begin(), count.end(), [](const auto& x, const auto& y) {
-    return x.second < y.second;
-  })->first;
+                           return x.second < y.second;
+                         })->first;
   std::vector<int> first, second;
   if(strongest.first == strongest.second)
   {
@@ -326,8 +327,8 @@ inline Overlap_removal remove_overlaps(const internal::Mesh_index& surface, Cut_
   for(std::size_t w = 0; w < split_uv.size(); ++w)
   {
     Chart_box& b = boxes[piece_of_wedge[w]];
-    b = {std::min(b[0], split_uv[w][0]), std::min(b[1], split_uv[w][1]),
-         std::max(b[2], split_uv[w][0]), std::max(b[3], split_uv[w][1])};
+    b = {std::min(b[0], split_uv[w][0]), std::min(b[1], split_uv[w][1]), std::max(b[2], split_uv[w][0]),
+         std::max(b[3], split_uv[w][1])};
   }
   const std::vector<Uv> offsets = shelf_pack(boxes);
   for(std::size_t w = 0; w < split_uv.size(); ++w)

@@ -83,8 +83,7 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
       const double length = std::hypot(normal[0], normal[1]);
       if(!(length > 0))
         continue;
-      const double offset =
-        (constant(j) - constant(i) - normal[0] * centre[0] - normal[1] * centre[1]) / length;
+      const double offset = (constant(j) - constant(i) - normal[0] * centre[0] - normal[1] * centre[1]) / length;
       if(!(std::abs(offset) <= radius))
         continue;
       const double half_chord = std::sqrt(radius * radius - offset * offset);
@@ -115,9 +114,9 @@ struct Face_conformal_distortion
 {
   double mm = 0, cc = 0; ///< ||J||^2 = mm |p|^2 - 2 p . cm + cc
   Uv cm{0, 0};
-  Uv g{0, 0};            ///< det J = g . p + c
+  Uv g{0, 0}; ///< det J = g . p + c
   double c = 0;
-  bool valid = false;    ///< false for a face degenerate in 3D
+  bool valid = false; ///< false for a face degenerate in 3D
 
   static Face_conformal_distortion of(const std::array<double, 3>& pv, const std::array<double, 3>& pa,
                                       const std::array<double, 3>& pb, const Uv& a, const Uv& b)
@@ -144,7 +143,10 @@ struct Face_conformal_distortion
     f.valid = true;
     return f;
   }
-  double numerator(const Uv& p) const { return mm * (p[0] * p[0] + p[1] * p[1]) - 2 * (p[0] * cm[0] + p[1] * cm[1]) + cc; }
+  double numerator(const Uv& p) const
+  {
+    return mm * (p[0] * p[0] + p[1] * p[1]) - 2 * (p[0] * cm[0] + p[1] * cm[1]) + cc;
+  }
   double determinant(const Uv& p) const { return g[0] * p[0] + g[1] * p[1] + c; }
 };
 
@@ -245,17 +247,15 @@ struct Seam_twin
 /// side of a seam moves only with its `twins` entry (its faces and its twin's, seen in its
 /// frame, are the whole star of a flat vertex), else not at all.
 inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vector<Uv>& uv,
-                                     const std::vector<char>& is_movable,
-                                     const std::vector<Seam_twin>& twins = {}, int max_passes = 8)
+                                     const std::vector<char>& is_movable, const std::vector<Seam_twin>& twins = {},
+                                     int max_passes = 8)
 {
   if(count_flipped_faces(index, uv) == 0)
     return 0;
   const Faces_around_vertices around(index);
   const std::vector<int>&first = around.first, &ring = around.faces;
 
-  auto twin_of = [&](int v) -> const Seam_twin* {
-    return twins.empty() || twins[v].wedge < 0 ? nullptr : &twins[v];
-  };
+  auto twin_of = [&](int v) -> const Seam_twin* { return twins.empty() || twins[v].wedge < 0 ? nullptr : &twins[v]; };
   // The other two corners of every face around v, in the face's order, and those around its
   // twin seen in v's frame.
   std::vector<std::array<Uv, 2>> sides;

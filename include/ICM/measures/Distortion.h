@@ -53,10 +53,10 @@ namespace ICM {
 /// The figures of paper Table I plus counts; see the file comment and doc/distortion.md.
 struct Distortion_measures
 {
-  std::size_t faces = 0;                ///< all faces read
-  std::size_t flipped_faces = 0;        ///< normalised UV orientation opposite to the 3D one
-  std::size_t degenerate_uv_faces = 0;  ///< UV area (near) zero
-  std::size_t degenerate_3d_faces = 0;  ///< 3D area (near) zero: no map, excluded everywhere
+  std::size_t faces = 0;               ///< all faces read
+  std::size_t flipped_faces = 0;       ///< normalised UV orientation opposite to the 3D one
+  std::size_t degenerate_uv_faces = 0; ///< UV area (near) zero
+  std::size_t degenerate_3d_faces = 0; ///< 3D area (near) zero: no map, excluded everywhere
   double conformality = 0;
   double angle_distortion = 0;
   double l2_shear = 0;
@@ -94,17 +94,32 @@ private:
   double sum_ = 0, compensation_ = 0;
 };
 
-inline Point3 difference(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Point2 difference(const Point2& a, const Point2& b) { return {a[0] - b[0], a[1] - b[1]}; }
+inline Point3 difference(const Point3& a, const Point3& b)
+{
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline Point2 difference(const Point2& a, const Point2& b)
+{
+  return {a[0] - b[0], a[1] - b[1]};
+}
 
-inline double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline double dot(const Point2& a, const Point2& b) { return a[0] * b[0] + a[1] * b[1]; }
+inline double dot(const Point3& a, const Point3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline double dot(const Point2& a, const Point2& b)
+{
+  return a[0] * b[0] + a[1] * b[1];
+}
 
 inline double cross_norm(const Point3& a, const Point3& b)
 {
   return std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
-inline double cross(const Point2& a, const Point2& b) { return a[0] * b[1] - a[1] * b[0]; }
+inline double cross(const Point2& a, const Point2& b)
+{
+  return a[0] * b[1] - a[1] * b[0];
+}
 
 inline double triangle_area(const Point3& p0, const Point3& p1, const Point3& p2)
 {
@@ -116,14 +131,19 @@ inline double signed_triangle_area(const Point2& q0, const Point2& q1, const Poi
 }
 
 /// Angle between two vectors by atan2(|a x b|, a.b): accurate near 0 and pi, unlike acos.
-inline double angle_between(const Point3& a, const Point3& b) { return std::atan2(cross_norm(a, b), dot(a, b)); }
-inline double angle_between(const Point2& a, const Point2& b) { return std::atan2(std::abs(cross(a, b)), dot(a, b)); }
+inline double angle_between(const Point3& a, const Point3& b)
+{
+  return std::atan2(cross_norm(a, b), dot(a, b));
+}
+inline double angle_between(const Point2& a, const Point2& b)
+{
+  return std::atan2(std::abs(cross(a, b)), dot(a, b));
+}
 
 template <class Point>
 std::array<double, 3> corner_angles(const Point& p0, const Point& p1, const Point& p2)
 {
-  return {angle_between(difference(p1, p0), difference(p2, p0)),
-          angle_between(difference(p2, p1), difference(p0, p1)),
+  return {angle_between(difference(p1, p0), difference(p2, p0)), angle_between(difference(p2, p1), difference(p0, p1)),
           angle_between(difference(p0, p2), difference(p1, p2))};
 }
 
@@ -133,7 +153,7 @@ struct Uv_normalisation
   double mirror = 1;
   double scale = 1;
   double total_3d_area = 0;
-  double degenerate_area = 0;  ///< areas at or below this count as zero
+  double degenerate_area = 0; ///< areas at or below this count as zero
 
   Point2 apply_to_vector(const Point2& d) const { return {scale * d[0], scale * mirror * d[1]}; }
   double apply_to_area(double signed_area) const { return scale * scale * mirror * signed_area; }
@@ -187,17 +207,17 @@ inline Uv_normalisation uv_normalisation(const std::vector<Point3>& xyz, const s
 struct Face_jacobian
 {
   double a = 0, b = 0, c = 0, d = 0;
-  double area_3d = 0;      ///< A_f
-  double signed_area = 0;  ///< s_f, normalised UV area, signed
+  double area_3d = 0;     ///< A_f
+  double signed_area = 0; ///< s_f, normalised UV area, signed
   double determinant() const { return signed_area / area_3d; }
-  double conformal_norm() const { return 0.5 * std::hypot(a + d, c - b); }      // Q
-  double anticonformal_norm() const { return 0.5 * std::hypot(a - d, c + b); }  // R
+  double conformal_norm() const { return 0.5 * std::hypot(a + d, c - b); }     // Q
+  double anticonformal_norm() const { return 0.5 * std::hypot(a - d, c + b); } // R
 };
 
 /// The frame: origin p0, x axis along p0p1, y axis in the face plane so that p2 has y > 0;
 /// it is an isometry of the 3D triangle, oriented by the corner order.
-inline Face_jacobian face_jacobian(const Point3& p0, const Point3& p1, const Point3& p2,
-                                   const Point2& du1, const Point2& du2, double signed_uv_area)
+inline Face_jacobian face_jacobian(const Point3& p0, const Point3& p1, const Point3& p2, const Point2& du1,
+                                   const Point2& du2, double signed_uv_area)
 {
   const Point3 e1 = difference(p1, p0), e2 = difference(p2, p0);
   const double length1 = std::sqrt(dot(e1, e1));
@@ -247,12 +267,12 @@ public:
     if(j.signed_area < 0)
       ++result_.flipped_faces;
     const double q = j.conformal_norm(), r = j.anticonformal_norm();
-    const double abs_det = std::abs(j.determinant());  // = s1 * s2 = |s_f| / A_f
+    const double abs_det = std::abs(j.determinant()); // = s1 * s2 = |s_f| / A_f
     const double s1_squared = (q + r) * (q + r);
-    const double smaller = std::min(q, r);  // s1 - s2 = 2 min(Q, R) with s = |sigma|
-    const double shear = 4.0 * smaller * smaller / abs_det;             // s1/s2 + s2/s1 - 2
-    const double stretch = (q * q + r * r) / (abs_det * abs_det);       // (1/s1^2 + 1/s2^2) / 2
-    const double qc = s1_squared / abs_det;                             // s1 / s2
+    const double smaller = std::min(q, r);                        // s1 - s2 = 2 min(Q, R) with s = |sigma|
+    const double shear = 4.0 * smaller * smaller / abs_det;       // s1/s2 + s2/s1 - 2
+    const double stretch = (q * q + r * r) / (abs_det * abs_det); // (1/s1^2 + 1/s2^2) / 2
+    const double qc = s1_squared / abs_det;                       // s1 / s2
     const double log_ratio = std::log(abs_det);
 
     shape_area_.add(j.area_3d);
@@ -299,15 +319,19 @@ private:
 // --- reading points of any type ------------------------------------------------------------
 
 template <class T, class = void>
-struct Has_xy_members : std::false_type {};
+struct Has_xy_members : std::false_type
+{};
 template <class T>
-struct Has_xy_members<T, std::void_t<decltype(std::declval<const T&>().x()),
-                                     decltype(std::declval<const T&>().y())>> : std::true_type {};
+struct Has_xy_members<T, std::void_t<decltype(std::declval<const T&>().x()), decltype(std::declval<const T&>().y())>>
+  : std::true_type
+{};
 
 template <class T, class = void>
-struct Has_z_member : std::false_type {};
+struct Has_z_member : std::false_type
+{};
 template <class T>
-struct Has_z_member<T, std::void_t<decltype(std::declval<const T&>().z())>> : std::true_type {};
+struct Has_z_member<T, std::void_t<decltype(std::declval<const T&>().z())>> : std::true_type
+{};
 
 /// UV value: anything with .x()/.y() (CGAL Point_2, Vector_2) or [0]/[1] (arrays, Eigen).
 template <class P>
@@ -336,8 +360,8 @@ Distortion_measures measure_faces(const TriangleMesh& mesh, VertexPointMap vpm, 
 inline Distortion_measures measure_unit_size(const std::vector<std::array<double, 3>>& xyz,
                                              const std::vector<std::array<double, 2>>& uv);
 
-}  // namespace distortion
-}  // namespace internal
+} // namespace distortion
+} // namespace internal
 
 /// Flat core. xyz and uv hold three corners per face (sizes 3F, same order); the 3D corner
 /// order orients the face. Throws std::invalid_argument on mismatched sizes or non-finite input.
@@ -347,7 +371,8 @@ inline Distortion_measures measure_distortion_of_triangles(const std::vector<std
   namespace d = internal::distortion;
   if(xyz.size() != uv.size() || xyz.size() % 3 != 0)
     throw std::invalid_argument("ICM::measure_distortion_of_triangles: xyz and uv must both hold 3 corners per face "
-                                "(got " + std::to_string(xyz.size()) + " and " + std::to_string(uv.size()) + ")");
+                                "(got " +
+                                std::to_string(xyz.size()) + " and " + std::to_string(uv.size()) + ")");
 
   for(std::size_t c = 0; c < xyz.size(); ++c)
   {
@@ -391,8 +416,8 @@ inline Distortion_measures measure_unit_size(const std::vector<std::array<double
   return accumulator.finish(xyz.size() / 3);
 }
 
-}  // namespace distortion
-}  // namespace internal
+} // namespace distortion
+} // namespace internal
 
 /// UV per vertex, 3D points from `vpm`. Works for any FaceGraph (Surface_mesh, Polyhedron_3,
 /// Seam_mesh with a map keyed by its own vertex_descriptor, ...). Throws std::invalid_argument
@@ -401,8 +426,8 @@ template <class TriangleMesh, class VertexUVMap, class VertexPointMap>
 Distortion_measures measure_distortion(const TriangleMesh& mesh, VertexUVMap uvmap, VertexPointMap vpm)
 {
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
-  return internal::distortion::measure_faces(
-      mesh, vpm, [&](halfedge_descriptor h) { return get(uvmap, target(h, mesh)); });
+  return internal::distortion::measure_faces(mesh, vpm,
+                                             [&](halfedge_descriptor h) { return get(uvmap, target(h, mesh)); });
 }
 
 /// UV per vertex, 3D points from `get(CGAL::vertex_point, mesh)`.
@@ -419,8 +444,7 @@ Distortion_measures measure_distortion_corner_uv(const TriangleMesh& mesh, Halfe
                                                  VertexPointMap vpm)
 {
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
-  return internal::distortion::measure_faces(
-      mesh, vpm, [&](halfedge_descriptor h) { return get(halfedge_uv_map, h); });
+  return internal::distortion::measure_faces(mesh, vpm, [&](halfedge_descriptor h) { return get(halfedge_uv_map, h); });
 }
 
 /// UV per corner, 3D points from `get(CGAL::vertex_point, mesh)`.
@@ -460,8 +484,8 @@ Distortion_measures measure_faces(const TriangleMesh& mesh, VertexPointMap vpm, 
   return measure_distortion_of_triangles(xyz, uv);
 }
 
-}  // namespace distortion
-}  // namespace internal
-}  // namespace ICM
+} // namespace distortion
+} // namespace internal
+} // namespace ICM
 
-#endif  // ICM_MEASURES_DISTORTION_H
+#endif // ICM_MEASURES_DISTORTION_H

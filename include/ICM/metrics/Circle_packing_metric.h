@@ -32,14 +32,13 @@ class Circle_packing_metric : public internal::Circle_metric
 public:
   static constexpr const char* name = "circle-packing";
 
-  int clamped_edges = 0;                ///< edges whose angle was clamped to pi/2 (obtuse overlap)
-  int fallback_radii = 0;               ///< vertices whose corner radii were all non-positive
-  int relaxed_cycles = 0;               ///< short edge cycles whose angles were reduced
+  int clamped_edges = 0;  ///< edges whose angle was clamped to pi/2 (obtuse overlap)
+  int fallback_radii = 0; ///< vertices whose corner radii were all non-positive
+  int relaxed_cycles = 0; ///< short edge cycles whose angles were reduced
 
   Circle_packing_metric() = default;
   /// Algorithm 2 on `index` (see `initial_circle_packing_metric`).
-  explicit Circle_packing_metric(const internal::Mesh_index& index,
-                                 Initial_radius rule = Initial_radius::Mean_corner);
+  explicit Circle_packing_metric(const internal::Mesh_index& index, Initial_radius rule = Initial_radius::Mean_corner);
 
   /// Sets the intersection angles (radians, in [0, pi/2]) of every edge.
   void set_intersection_angles(const std::vector<double>& phi)
@@ -57,8 +56,8 @@ public:
   /// What the parameterizer reports of this metric.
   std::string summary() const
   {
-    return std::to_string(clamped_edges) + " edge angles clamped to pi/2, " +
-           std::to_string(relaxed_cycles) + " short cycles relaxed";
+    return std::to_string(clamped_edges) + " edge angles clamped to pi/2, " + std::to_string(relaxed_cycles) +
+           " short cycles relaxed";
   }
 };
 
@@ -73,8 +72,8 @@ public:
 /// meshes (bull.off: 226 such cycles). Every 3- and 4-cycle that does not bound one or two faces is checked, and the
 /// angles of a failing one are scaled down to (m - 2) pi - `margin`. Angles only decrease,
 /// so a cycle once satisfied stays satisfied. Returns the number of cycles relaxed.
-inline int keep_short_cycles_flattenable(const internal::Mesh_index& index,
-                                         std::vector<double>& phi, double margin = 0.1 * M_PI)
+inline int keep_short_cycles_flattenable(const internal::Mesh_index& index, std::vector<double>& phi,
+                                         double margin = 0.1 * M_PI)
 {
   const int nv = index.number_of_vertices();
   // Sorted neighbours of every vertex, each with the connecting edge.
@@ -165,12 +164,10 @@ inline int keep_short_cycles_flattenable(const internal::Mesh_index& index,
 /// disjoint circles become tangent (the edge shortens), heavy overlap becomes orthogonal (the
 /// edge lengthens). Short cycles whose inside could not be made flat are then relaxed
 /// (`keep_short_cycles_flattenable`).
-inline Circle_packing_metric::Circle_packing_metric(const internal::Mesh_index& index,
-                                                    Initial_radius rule)
+inline Circle_packing_metric::Circle_packing_metric(const internal::Mesh_index& index, Initial_radius rule)
 {
   const std::vector<double> euclidean = internal::euclidean_edge_lengths(index);
-  const std::vector<double> radius =
-    internal::vertex_radii_from_corners(index, euclidean, rule, fallback_radii);
+  const std::vector<double> radius = internal::vertex_radii_from_corners(index, euclidean, rule, fallback_radii);
   u0 = Eigen::Map<const Eigen::VectorXd>(radius.data(), radius.size()).array().log();
 
   std::vector<double> phi(index.number_of_edges());
@@ -188,8 +185,8 @@ inline Circle_packing_metric::Circle_packing_metric(const internal::Mesh_index& 
 }
 
 /// Algorithm 2 (the paper's name for the constructor).
-inline Circle_packing_metric initial_circle_packing_metric(
-  const internal::Mesh_index& index, Initial_radius rule = Initial_radius::Mean_corner)
+inline Circle_packing_metric initial_circle_packing_metric(const internal::Mesh_index& index,
+                                                           Initial_radius rule = Initial_radius::Mean_corner)
 {
   return Circle_packing_metric(index, rule);
 }

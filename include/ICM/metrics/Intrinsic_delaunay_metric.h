@@ -133,8 +133,7 @@ inline bool is_delaunay(const Delaunay_half& f, const Delaunay_half& g)
 }
 
 /// Whether the scaled metric is Delaunay at the diamond's edge ab.
-inline bool is_delaunay_edge(const Diamond_sides& s, int e, const std::vector<double>& l,
-                             const std::vector<double>& g)
+inline bool is_delaunay_edge(const Diamond_sides& s, int e, const std::vector<double>& l, const std::vector<double>& g)
 {
   return is_delaunay(delaunay_half(l[s.bp], l[s.pa], l[e], g[s.a], g[s.b], g[s.p]),
                      delaunay_half(l[s.qb], l[s.aq], l[e], g[s.a], g[s.b], g[s.q]));
@@ -142,8 +141,8 @@ inline bool is_delaunay_edge(const Diamond_sides& s, int e, const std::vector<do
 
 /// Both halves of the Delaunay test of every edge, accumulated face by face: each face's
 /// corner terms are computed once instead of once per diamond.
-inline void accumulate_delaunay_halves(const Mesh_index& t, const std::vector<double>& l,
-                                       const std::vector<double>& g, std::vector<Delaunay_half>& halves)
+inline void accumulate_delaunay_halves(const Mesh_index& t, const std::vector<double>& l, const std::vector<double>& g,
+                                       std::vector<Delaunay_half>& halves)
 {
   halves.assign(t.number_of_edges(), Delaunay_half());
   for(int f = 0; f < t.number_of_faces(); ++f)
@@ -166,8 +165,7 @@ inline double euclidean_flipped_length(const Diamond_sides& s, int e, const std:
 {
   auto angle_at_a = [&](double opposite, double side_1, double side_2) {
     // Angle between side_1 and side_2 of a triangle, opposite `opposite`, without cancellation.
-    const std::array<double, 3> excess = {0.5 * (side_1 + side_2 - opposite),
-                                          0.5 * (opposite + side_2 - side_1),
+    const std::array<double, 3> excess = {0.5 * (side_1 + side_2 - opposite), 0.5 * (opposite + side_2 - side_1),
                                           0.5 * (opposite + side_1 - side_2)};
     return triangle_angles_from_excesses(excess).angle[0];
   };
@@ -195,10 +193,8 @@ public:
   Eigen::VectorXd u0; ///< zero: the mesh itself
 
   Intrinsic_delaunay_metric() = default;
-  explicit Intrinsic_delaunay_metric(const internal::Mesh_index& index,
-                                     const std::vector<char>& is_fixed_edge = {})
-    : u0(Eigen::VectorXd::Zero(index.number_of_vertices())),
-      triangulation_(index),
+  explicit Intrinsic_delaunay_metric(const internal::Mesh_index& index, const std::vector<char>& is_fixed_edge = {})
+    : u0(Eigen::VectorXd::Zero(index.number_of_vertices())), triangulation_(index),
       base_lengths_(internal::euclidean_edge_lengths(index)),
       is_fixed_(is_fixed_edge.empty() ? std::vector<char>(index.number_of_edges(), 0) : is_fixed_edge),
       in_stack_(index.number_of_edges(), 0)
@@ -207,16 +203,12 @@ public:
     mesh_flips_ = flip_to_delaunay(unit, Flip_rule::Euclidean);
   }
 
-  double length(int e, double gi, double gj) const
-  {
-    return std::sqrt(gi) * std::sqrt(gj) * base_lengths_[e];
-  }
+  double length(int e, double gi, double gj) const { return std::sqrt(gi) * std::sqrt(gj) * base_lengths_[e]; }
 
   Face_geometry face_geometry(const std::array<int, 3>& e, const std::array<double, 3>& g,
                               const std::array<double, 3>& /* l */) const
   {
-    return internal::vertex_scaling_face_geometry(
-      {base_lengths_[e[0]], base_lengths_[e[1]], base_lengths_[e[2]]}, g);
+    return internal::vertex_scaling_face_geometry({base_lengths_[e[0]], base_lengths_[e[1]], base_lengths_[e[2]]}, g);
   }
 
   /// Per edge, whether the caller fixed it (the seams): it never flips, and an energy's
@@ -228,10 +220,7 @@ public:
 
   /// Flips the triangulation to be Delaunay for the factors `g` = exp(u) (Ptolemy flips, the
   /// metric does not change); returns the number of flips. Flips nothing while frozen.
-  int make_delaunay(const std::vector<double>& g)
-  {
-    return frozen_ ? 0 : flip_to_delaunay(g, Flip_rule::Ptolemy);
-  }
+  int make_delaunay(const std::vector<double>& g) { return frozen_ ? 0 : flip_to_delaunay(g, Flip_rule::Ptolemy); }
 
   /// While frozen the triangulation is kept: the metric is vertex scaling on it (valid where
   /// its faces are triangles), a smooth function of u whose Laplacian keeps its pattern. The
@@ -246,12 +235,16 @@ public:
   std::string summary() const
   {
     return "the mesh's own lengths; " + std::to_string(mesh_flips_) +
-           " edges flipped to its intrinsic Delaunay triangulation, " +
-           std::to_string(flips_ - mesh_flips_) + " Ptolemy flips since";
+           " edges flipped to its intrinsic Delaunay triangulation, " + std::to_string(flips_ - mesh_flips_) +
+           " Ptolemy flips since";
   }
 
 private:
-  enum class Flip_rule { Euclidean, Ptolemy };
+  enum class Flip_rule
+  {
+    Euclidean,
+    Ptolemy
+  };
 
   /// Lawson's algorithm: every non-Delaunay flippable edge is flipped and its diamond's four
   /// sides re-examined. A flip that would join a vertex to itself is skipped; the face
@@ -281,9 +274,8 @@ private:
       const internal::Diamond_sides s = internal::diamond_sides(t, x);
       if(s.p == s.q || internal::is_delaunay_edge(s, e, base_lengths_, g))
         continue;
-      const double flipped = rule == Flip_rule::Euclidean
-                               ? internal::euclidean_flipped_length(s, e, base_lengths_)
-                               : internal::ptolemy_flipped_length(s, e, base_lengths_);
+      const double flipped = rule == Flip_rule::Euclidean ? internal::euclidean_flipped_length(s, e, base_lengths_)
+                                                          : internal::ptolemy_flipped_length(s, e, base_lengths_);
       if(!(flipped > 0) || !std::isfinite(flipped))
         continue;
       internal::flip_edge(t, e, x);

@@ -30,8 +30,7 @@ namespace internal {
 /// leaves side c = l0_c / sqrt(g_c): the shape of the face without the common scale, so the
 /// excesses, angles and weights do not depend on how large the factors are, only on how
 /// they differ.
-inline Face_geometry vertex_scaling_face_geometry(const std::array<double, 3>& l0,
-                                                  const std::array<double, 3>& g)
+inline Face_geometry vertex_scaling_face_geometry(const std::array<double, 3>& l0, const std::array<double, 3>& g)
 {
   std::array<double, 3> side, excess;
   for(int c = 0; c < 3; ++c)
@@ -62,24 +61,19 @@ public:
 
   Vertex_scaling_metric() = default;
   explicit Vertex_scaling_metric(const internal::Mesh_index& index)
-    : u0(Eigen::VectorXd::Zero(index.number_of_vertices())),
-      mesh_lengths(internal::euclidean_edge_lengths(index))
+    : u0(Eigen::VectorXd::Zero(index.number_of_vertices())), mesh_lengths(internal::euclidean_edge_lengths(index))
   {}
 
   /// Length of edge `e` for the factors `gi`, `gj` (= exp(u)) of its endpoints; the square
   /// roots are taken apart so that factors near the overflow threshold still work.
-  double length(int e, double gi, double gj) const
-  {
-    return std::sqrt(gi) * std::sqrt(gj) * mesh_lengths[e];
-  }
+  double length(int e, double gi, double gj) const { return std::sqrt(gi) * std::sqrt(gj) * mesh_lengths[e]; }
 
   /// Angles and cotangent weights of a face with edges `e[c]` (opposite corner c) and corner
   /// factors `g[c]` (see `internal::vertex_scaling_face_geometry`).
   Face_geometry face_geometry(const std::array<int, 3>& e, const std::array<double, 3>& g,
                               const std::array<double, 3>& /* l */) const
   {
-    return internal::vertex_scaling_face_geometry(
-      {mesh_lengths[e[0]], mesh_lengths[e[1]], mesh_lengths[e[2]]}, g);
+    return internal::vertex_scaling_face_geometry({mesh_lengths[e[0]], mesh_lengths[e[1]], mesh_lengths[e[2]]}, g);
   }
 
   std::string summary() const { return "the mesh's own lengths"; }

@@ -230,8 +230,8 @@ Status energy_optimum(const Chart_problem& problem, const Chart_options& options
   report.final_energy = optimizer.final_energy;
   report.energy_message = optimizer.message;
   if(optimizer.energy_history.empty())
-    return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, std::string(energy_name<Energy>()) + " energy: " +
-                                                               optimizer.message);
+    return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
+                           std::string(energy_name<Energy>()) + " energy: " + optimizer.message);
   Newton_options finish = options.newton;
   finish.tolerance = 1e-3 * options.newton.tolerance;
   finish.max_iterations = 3;
@@ -272,10 +272,10 @@ Status lay_out_disk(const Chart_problem& problem, const Chart_method& method,
   Curvature_map<Metric>& curvature = solver.curvature_map();
   const Mesh_index& triangulation = curvature.mesh_index();
   const std::vector<double>& lengths = curvature.lengths();
-  const bool harmonic = !problem.prescribes_border() &&
-                        (method.layout == Layout_method::Harmonic ||
-                         (method.layout == Layout_method::Automatic &&
-                          index.number_of_faces() >= method.harmonic_layout_min_faces));
+  const bool harmonic =
+    !problem.prescribes_border() &&
+    (method.layout == Layout_method::Harmonic ||
+     (method.layout == Layout_method::Automatic && index.number_of_faces() >= method.harmonic_layout_min_faces));
   report.layout = harmonic ? "harmonic" : "propagation";
   if(harmonic)
   {
@@ -319,7 +319,8 @@ Status lay_out_cut(const Chart_problem& problem, Curvature_map<Metric>& curvatur
   {
     intrinsic_cut = cut_mesh(triangulation, problem.seams);
     if(!intrinsic_cut.ok())
-      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, "the intrinsic triangulation: " + intrinsic_cut.status.message);
+      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
+                             "the intrinsic triangulation: " + intrinsic_cut.status.message);
   }
   const Cut_mesh& laid = intrinsic ? intrinsic_cut : cut;
   std::vector<double> disk_lengths(laid.disk.number_of_edges());
@@ -332,7 +333,8 @@ Status lay_out_cut(const Chart_problem& problem, Curvature_map<Metric>& curvatur
   {
     const std::vector<int> match = match_wedges(index, cut, triangulation, intrinsic_cut, problem.seams);
     if(match.empty())
-      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, "the wedges of the intrinsic triangulation do not match the mesh's");
+      return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
+                             "the wedges of the intrinsic triangulation do not match the mesh's");
     std::vector<Uv> intrinsic_uv;
     intrinsic_uv.swap(uv);
     uv.resize(match.size());
@@ -418,15 +420,18 @@ Status solve_chart_in(const Chart_problem& problem, const Chart_options& options
   if(problem.prescribes_border())
     finish_prescribed_border(problem, uv, report);
   report.max_layout_length_error = check.max_relative_length_error;
-  const bool finite = std::all_of(uv.begin(), uv.end(), [](const Uv& p) { return std::isfinite(p[0]) && std::isfinite(p[1]); });
+  const bool finite =
+    std::all_of(uv.begin(), uv.end(), [](const Uv& p) { return std::isfinite(p[0]) && std::isfinite(p[1]); });
   if(finite)
     report.overlapping_border_edges = count_border_overlaps(chart, uv).crossing_pairs;
   report.seconds_layout += lap();
   if(!finite || report.flipped_faces > 0)
-    return Status::failure(ERROR_NO_1_TO_1_MAPPING, std::to_string(report.flipped_faces) + " faces are flipped in the layout");
+    return Status::failure(ERROR_NO_1_TO_1_MAPPING,
+                           std::to_string(report.flipped_faces) + " faces are flipped in the layout");
   if(!(check.max_relative_length_error <= options.max_layout_length_error))
-    return Status::failure(ERROR_NO_1_TO_1_MAPPING, "the layout does not reproduce the metric (relative edge length error " +
-                                                      std::to_string(check.max_relative_length_error) + ")");
+    return Status::failure(ERROR_NO_1_TO_1_MAPPING,
+                           "the layout does not reproduce the metric (relative edge length error " +
+                             std::to_string(check.max_relative_length_error) + ")");
   return Status::success();
 }
 

@@ -74,8 +74,7 @@ std::string singular_set_problem(const Mesh_index& index, const Metric& metric, 
   {
     // The development is exact where it is flat off S: every interior cone must lie on a
     // seam of the cut it is developed along.
-    const std::vector<int> seam_degree =
-      seam_degrees(index, development_seams(metric, index.number_of_edges()));
+    const std::vector<int> seam_degree = seam_degrees(index, development_seams(metric, index.number_of_edges()));
     for(int v : singular)
       if(!index.is_boundary_vertex[v] && seam_degree[v] == 0)
         return "interior cone " + std::to_string(v) +
@@ -104,7 +103,6 @@ inline void normalise_scale(const std::vector<int>& singular, const Eigen::Vecto
   u.array() -= mean / singular.size();
 }
 
-
 } // namespace internal
 
 namespace internal {
@@ -128,8 +126,7 @@ public:
                       const Eigen::VectorXd& target, Curvature_space_report& report)
     : problem_(dirichlet, index, energy, singular, report, target), metric_(metric), is_singular_(is_singular),
       singular_(singular), u_(u), options_(options), newton_(newton_of(options.newton, Newton_options())),
-      report_(report), start_(Clock::now()),
-      freezing_(Problem::can_freeze && options.frozen_steps > 0),
+      report_(report), start_(Clock::now()), freezing_(Problem::can_freeze && options.frozen_steps > 0),
       // Trials solved to less than the Newton tolerance: the result is solved again to it.
       inexact_trials_(options.trial_tolerance_factor > 0), memory_(options.memory)
   {}
@@ -352,9 +349,8 @@ private:
 /// at cones whose angle the user fixed.
 template <class SparseSolver, class Metric, class Energy>
 Curvature_space_report minimize_energy_on_singular_values(
-  Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const internal::Mesh_index& index,
-  const Metric& metric, const Energy& energy, Eigen::VectorXd& u,
-  const Curvature_space_options& options = Curvature_space_options(),
+  Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const internal::Mesh_index& index, const Metric& metric,
+  const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options(),
   const Eigen::VectorXd& target = Eigen::VectorXd())
 {
   Curvature_space_report report;
@@ -369,16 +365,17 @@ Curvature_space_report minimize_energy_on_singular_values(
   if(u.size() != nv)
     u = metric.u0;
   internal::Singular_values_run<SparseSolver, Metric, Energy> run(dirichlet, index, metric, energy, is_singular,
-                                                                   singular, u, options, target, report);
+                                                                  singular, u, options, target, report);
   return run.run();
 }
 
 /// Convenience form: builds the Dirichlet solver for `is_singular`, starts from the entropy
 /// optimum (u_S = u0_S) when `u` is empty.
 template <class SparseSolver = Default_sparse_solver, class Metric, class Energy>
-Curvature_space_report minimize_energy_on_singular_values(
-  const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_singular,
-  const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options())
+Curvature_space_report
+minimize_energy_on_singular_values(const internal::Mesh_index& index, const Metric& metric,
+                                   const std::vector<char>& is_singular, const Energy& energy, Eigen::VectorXd& u,
+                                   const Curvature_space_options& options = Curvature_space_options())
 {
   std::vector<char> is_free(is_singular.size());
   for(std::size_t v = 0; v < is_singular.size(); ++v)

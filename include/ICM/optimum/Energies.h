@@ -69,10 +69,8 @@ struct Has_curvature_gradient : std::false_type
 template <class Energy, class State>
 struct Has_curvature_gradient<Energy, State,
                               std::void_t<decltype(std::declval<const Energy&>().gradient_k(
-                                std::declval<const State&>(), std::declval<Eigen::VectorXd&>()))>>
-  : std::true_type
+                                std::declval<const State&>(), std::declval<Eigen::VectorXd&>()))>> : std::true_type
 {};
-
 
 template <class Energy, class State, class = void>
 struct Has_gauss_newton : std::false_type
@@ -116,7 +114,6 @@ constexpr bool has_energy_value = internal::Has_energy_value<Energy, Energy_stat
 /// Whether `Energy` gives grad_k E directly (`gradient_k`).
 template <class Energy, class Metric>
 constexpr bool has_curvature_gradient = internal::Has_curvature_gradient<Energy, Energy_state<Metric>>::value;
-
 
 /// Whether `Energy` gives its Gauss-Newton Hessian in u (`gauss_newton`), which the
 /// singular-values optimizer turns into its default preconditioner.
@@ -402,4 +399,3 @@ private:
 } // namespace ICM
 
 #endif // ICM_OPTIMUM_ENERGIES_H
-

@@ -69,8 +69,7 @@ struct Has_log_length_derivatives : std::false_type
 {};
 template <class Metric>
 struct Has_log_length_derivatives<
-  Metric, std::void_t<decltype(std::declval<const Metric&>().log_length_derivatives(0, 1.0, 1.0))>>
-  : std::true_type
+  Metric, std::void_t<decltype(std::declval<const Metric&>().log_length_derivatives(0, 1.0, 1.0))>> : std::true_type
 {};
 
 /// {d log l_e / d u_i, d log l_e / d u_j} for the edge e = ij with factors gi = exp(u_i),
@@ -117,8 +116,7 @@ template <class Metric, class = void>
 struct Has_fixed_edges : std::false_type
 {};
 template <class Metric>
-struct Has_fixed_edges<Metric, std::void_t<decltype(std::declval<const Metric&>().fixed_edges())>>
-  : std::true_type
+struct Has_fixed_edges<Metric, std::void_t<decltype(std::declval<const Metric&>().fixed_edges())>> : std::true_type
 {};
 
 /// The seams of a metric's development, per edge: its fixed edges, or none.
@@ -131,9 +129,18 @@ std::vector<char> development_seams(const Metric& metric, int edges)
   return std::vector<char>(edges, 0);
 }
 
-inline double cross(const Point2& a, const Point2& b) { return a[0] * b[1] - a[1] * b[0]; }
-inline double dot(const Point2& a, const Point2& b) { return a[0] * b[0] + a[1] * b[1]; }
-inline Point2 minus(const Point2& a, const Point2& b) { return {a[0] - b[0], a[1] - b[1]}; }
+inline double cross(const Point2& a, const Point2& b)
+{
+  return a[0] * b[1] - a[1] * b[0];
+}
+inline double dot(const Point2& a, const Point2& b)
+{
+  return a[0] * b[0] + a[1] * b[1];
+}
+inline Point2 minus(const Point2& a, const Point2& b)
+{
+  return {a[0] - b[0], a[1] - b[1]};
+}
 inline Point2 rotated(const Point2& d, double angle)
 {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -319,8 +326,7 @@ private:
         angle_partial[c] += log_area_partial * std::cos(theta) / std::sin(theta) / 3.0;
         // Edge e[c] joins corners c+1 and c+2.
         const int a = (c + 1) % 3, b = (c + 2) % 3;
-        const std::array<double, 2> d =
-          internal::log_length_derivatives(metric, e[c], radii_[v[a]], radii_[v[b]]);
+        const std::array<double, 2> d = internal::log_length_derivatives(metric, e[c], radii_[v[a]], radii_[v[b]]);
         gradient[v[a]] += 2.0 / 3.0 * log_area_partial * d[0];
         gradient[v[b]] += 2.0 / 3.0 * log_area_partial * d[1];
       }
@@ -537,10 +543,10 @@ private:
   std::vector<double> lengths_, weights_;
   std::vector<Face_geometry> geometry_; // per face of the triangulation
   int invalid_faces_ = 0;
-  std::vector<double> area_;                  // raw, per mesh face
-  std::vector<std::array<double, 3>> angle_;  // per mesh face corner (metric faces only)
+  std::vector<double> area_;                 // raw, per mesh face
+  std::vector<std::array<double, 3>> angle_; // per mesh face corner (metric faces only)
   double area_scale_ = 1;
-  std::vector<internal::Point2> z_;           // developed wedges
+  std::vector<internal::Point2> z_;                            // developed wedges
   mutable std::vector<std::array<double, 3>> developed_angle_; // per mesh face corner, when asked
   mutable bool developed_angles_current_ = false;
   // The cut of the development: the seams, each vertex's seam degree, the wedges of the mesh's
@@ -551,7 +557,7 @@ private:
   std::vector<std::pair<long long, int>> wedge_of_key_;
   int number_of_wedges_ = 0;
   std::vector<Unfolding_step> placements_; // the root's third vertex first
-  long placements_version_ = -1;      // the triangulation version they were found for
+  long placements_version_ = -1;           // the triangulation version they were found for
   int root_edge_ = -1;
   // Scratch of gradient_u.
   mutable std::vector<double> raw_area_partial_;

@@ -77,8 +77,8 @@ private:
 /// once the change of E is lost in its rounding, its form for a quadratic model,
 /// phi'(alpha) <= (1 - 2 c) |phi'(0)| (Hager and Zhang's approximate Wolfe condition).
 /// Without values (an energy convex in k) only the derivative test.
-inline bool sufficient_decrease(bool has_value, double phi0, double dphi0, double phi, double dphi,
-                                double alpha, double c)
+inline bool sufficient_decrease(bool has_value, double phi0, double dphi0, double phi, double dphi, double alpha,
+                                double c)
 {
   const bool derivative_test = dphi <= (1.0 - 2.0 * c) * -dphi0;
   if(!has_value)

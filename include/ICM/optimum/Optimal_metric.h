@@ -34,9 +34,8 @@ inline std::vector<char> boundary_singular_set(const internal::Mesh_index& index
 /// problem u_S = u0_S, K(u)_N = 0. `solver` must have been built with F = not S; it keeps
 /// its factorization pattern for later use (the harmonic layout reuses it).
 template <class SparseSolver, class Metric>
-Newton_report free_boundary_optimum(Inverse_curvature_map<SparseSolver, Metric>& solver,
-                                    const Metric& metric, Eigen::VectorXd& u,
-                                    const Newton_options& options = Newton_options())
+Newton_report free_boundary_optimum(Inverse_curvature_map<SparseSolver, Metric>& solver, const Metric& metric,
+                                    Eigen::VectorXd& u, const Newton_options& options = Newton_options())
 {
   u = metric.u0;
   const Eigen::VectorXd flat = Eigen::VectorXd::Zero(u.size());
@@ -68,10 +67,8 @@ struct Diffusion_report
 /// u - u0 is removed. Every step shifts u_S by one constant, so u_S - u0_S stays uniform
 /// (Lemma 3.4) and the limit is the entropy minimum.
 template <class Metric = Circle_packing_metric>
-Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& index,
-                                                   const Metric& metric,
-                                                   const std::vector<char>& is_singular,
-                                                   Eigen::VectorXd& u,
+Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& index, const Metric& metric,
+                                                   const std::vector<char>& is_singular, Eigen::VectorXd& u,
                                                    const Diffusion_options& options = Diffusion_options())
 {
   Diffusion_report report;
@@ -97,8 +94,8 @@ Diffusion_report free_boundary_curvature_diffusion(const internal::Mesh_index& i
       break;
     if(report.iterations == options.max_iterations || !std::isfinite(report.final_residual))
     {
-      report.message = "curvature diffusion did not converge (curvature error " +
-                       std::to_string(report.final_residual) + ")";
+      report.message =
+        "curvature diffusion did not converge (curvature error " + std::to_string(report.final_residual) + ")";
       return report;
     }
     std::fill(diagonal.begin(), diagonal.end(), 0.0);

@@ -31,8 +31,8 @@ template <class Metric, class = void>
 struct Can_freeze_triangulation : std::false_type
 {};
 template <class Metric>
-struct Can_freeze_triangulation<
-  Metric, std::void_t<decltype(std::declval<Metric&>().freeze_triangulation(true))>> : std::true_type
+struct Can_freeze_triangulation<Metric, std::void_t<decltype(std::declval<Metric&>().freeze_triangulation(true))>>
+  : std::true_type
 {};
 
 inline void remove_mean(Eigen::VectorXd& x)
@@ -169,10 +169,9 @@ public:
   /// `target`: the curvature of the free vertices (zero, or a user cone's fixed angle
   /// defect), per vertex; empty for zero.
   Singular_value_problem(Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const Mesh_index& index,
-                         const Energy& energy, const std::vector<int>& singular,
-                         Curvature_space_report& report, const Eigen::VectorXd& target)
-    : dirichlet_(dirichlet), index_(index), state_(index), energy_(energy), singular_(singular),
-      report_(report),
+                         const Energy& energy, const std::vector<int>& singular, Curvature_space_report& report,
+                         const Eigen::VectorXd& target)
+    : dirichlet_(dirichlet), index_(index), state_(index), energy_(energy), singular_(singular), report_(report),
       target_(target.size() == index.number_of_vertices() ? target : Eigen::VectorXd::Zero(index.number_of_vertices()))
   {}
 

@@ -156,9 +156,10 @@ bool line_search_in_k(Measure& measure, const std::vector<int>& singular, const 
 /// defect spread over S); `u` (u0 when empty) receives the optimum, normalised so that
 /// mean_S(u - u0) = 0. Stops when Theorem 3.2's residual is below `options.tolerance`.
 template <class SparseSolver = Default_sparse_solver, class Metric, class Energy>
-Curvature_space_report minimize_energy_by_projected_gradient(
-  const internal::Mesh_index& index, const Metric& metric, const std::vector<char>& is_singular,
-  const Energy& energy, Eigen::VectorXd& u, const Curvature_space_options& options = Curvature_space_options())
+Curvature_space_report
+minimize_energy_by_projected_gradient(const internal::Mesh_index& index, const Metric& metric,
+                                      const std::vector<char>& is_singular, const Energy& energy, Eigen::VectorXd& u,
+                                      const Curvature_space_options& options = Curvature_space_options())
 {
   const auto start = internal::Clock::now();
   Curvature_space_report report;
@@ -233,13 +234,13 @@ Curvature_space_report minimize_energy_by_projected_gradient(
     if(report.final_residual <= options.tolerance)
       break;
     if(report.iterations == options.max_iterations)
-      return fail("not converged in " + std::to_string(options.max_iterations) +
-                  " iterations (Theorem 3.2 residual " + std::to_string(report.final_residual) + ")");
+      return fail("not converged in " + std::to_string(options.max_iterations) + " iterations (Theorem 3.2 residual " +
+                  std::to_string(report.final_residual) + ")");
     double value_trial = 0;
     if(!internal::line_search_in_k(measure, singular, k, u, p, value, has_value, options, lambda, k_trial, u_trial,
                                    value_trial, h_trial))
-      return fail("the line search found no decrease (Theorem 3.2 residual " +
-                  std::to_string(report.final_residual) + ")");
+      return fail("the line search found no decrease (Theorem 3.2 residual " + std::to_string(report.final_residual) +
+                  ")");
     // Barzilai-Borwein: the next trial step from the change of the projected gradient.
     const Eigen::VectorXd p_trial = projected(h_trial);
     const Eigen::VectorXd step = -lambda * p, change = p_trial - p;
