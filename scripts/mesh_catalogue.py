@@ -39,39 +39,39 @@ def read_off(path):
     return nv, faces
 
 
+class UnionFind:
+    def __init__(self):
+        self.parent = {}
+
+    def find(self, x):
+        self.parent.setdefault(x, x)
+        while self.parent[x] != x:
+            self.parent[x] = self.parent[self.parent[x]]
+            x = self.parent[x]
+        return x
+
+    def union(self, a, b):
+        self.parent[self.find(a)] = self.find(b)
+
+
 def topology(nv, faces):
     """(components, boundary loops, Euler characteristic, genus) of a manifold mesh."""
     edges = collections.Counter()
     for f in faces:
         for i in range(len(f)):
             edges[tuple(sorted((f[i], f[(i + 1) % len(f)])))] += 1
-    parent = list(range(nv))
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
+    pieces, loops = UnionFind(), UnionFind()
     for a, b in edges:
-        parent[find(a)] = find(b)
+        pieces.union(a, b)
+    for (a, b), n in edges.items():
+        if n == 1:
+            loops.union(a, b)
     used = {v for f in faces for v in f}
-    components = len({find(v) for v in used})
-    border = [e for e, n in edges.items() if n == 1]
-    bparent = {v: v for e in border for v in e}
-
-    def bfind(x):
-        while bparent[x] != x:
-            bparent[x] = bparent[bparent[x]]
-            x = bparent[x]
-        return x
-
-    for a, b in border:
-        bparent[bfind(a)] = bfind(b)
-    loops = len({bfind(v) for v in bparent})
+    components = len({pieces.find(v) for v in used})
+    boundary_loops = len({loops.find(v) for v in list(loops.parent)})
     chi = len(used) - len(edges) + len(faces)
-    genus = (2 * components - loops - chi) // 2
-    return components, loops, chi, genus
+    genus = (2 * components - boundary_loops - chi) // 2
+    return components, boundary_loops, chi, genus
 
 
 def readers(name):
