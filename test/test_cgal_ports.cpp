@@ -126,8 +126,9 @@ TEST(CgalPorts, SimpleParameterizationWithASolverTraits)
   using Eigen_matrix = CGAL::Eigen_sparse_matrix<double>::EigenType;
   using Cholesky_traits = CGAL::Eigen_solver_traits<Eigen::SimplicialLDLT<Eigen_matrix>>;
   using Parameterizer = ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, Cholesky_traits>;
-  static_assert(std::is_same<Parameterizer::Solver, Eigen::SimplicialLDLT<Eigen_matrix>>::value,
-                "a Cholesky traits gives its solver");
+  static_assert(std::is_same<Parameterizer::Solver,
+                             Eigen::SimplicialLDLT<ICM::Sparse_matrix, Eigen::Upper, Eigen::AMDOrdering<int>>>::value,
+                "a Cholesky traits gives its solver, on the upper triangle the Laplacian fills");
   static_assert(
     std::is_same<
       ICM::Inverse_curvature_map_parameterizer_3<Surface_mesh, CGAL::Default, CGAL::Eigen_solver_traits<>>::Solver,

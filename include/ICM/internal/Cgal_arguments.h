@@ -6,8 +6,9 @@
 //    (LSCM's and ARAP's, which pins two vertices of a free border) the free border, which
 //    needs no pinned vertex;
 //  - a CGAL solver traits (`CGAL::Eigen_solver_traits<S>`) becomes its Eigen solver when that
-//    is a sparse Cholesky, else ICM's default: the dynamic Laplacian is symmetric positive
-//    definite and Newton needs it solved exactly, which CGAL's default BiCGSTAB does not do.
+//    is a simplicial Cholesky (on the upper triangle, which the dynamic Laplacian fills), else
+//    ICM's default: the Laplacian is symmetric positive definite and Newton needs it solved
+//    exactly, which CGAL's default BiCGSTAB does not do.
 // Anything else stops the compilation with one sentence naming the argument.
 
 #ifndef ICM_INTERNAL_CGAL_ARGUMENTS_H
@@ -66,10 +67,28 @@ struct Is_sparse_solver<
                  decltype(std::declval<const T&>().info())>> : std::true_type
 {};
 
-/// Whether `T` is one of Eigen's simplicial Cholesky factorizations.
+/// One of Eigen's simplicial Cholesky factorizations, in the form the dynamic Laplacian takes:
+/// ICM's sparse matrix, whose upper triangle it fills (`type`); else not one (`void`).
 template <class T>
-struct Is_simplicial_cholesky : std::is_base_of<Eigen::SimplicialCholeskyBase<T>, T>
-{};
+struct Simplicial_cholesky_form
+{
+  using type = void;
+};
+template <class Matrix, int UpLo, class Ordering>
+struct Simplicial_cholesky_form<Eigen::SimplicialLDLT<Matrix, UpLo, Ordering>>
+{
+  using type = Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Ordering>;
+};
+template <class Matrix, int UpLo, class Ordering>
+struct Simplicial_cholesky_form<Eigen::SimplicialCholesky<Matrix, UpLo, Ordering>>
+{
+  using type = Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Ordering>; // its default mode
+};
+template <class Matrix, int UpLo, class Ordering>
+struct Simplicial_cholesky_form<Eigen::SimplicialLLT<Matrix, UpLo, Ordering>>
+{
+  using type = Eigen::SimplicialLLT<Sparse_matrix, Eigen::Upper, Ordering>;
+};
 
 /// The metric of the second argument: ICM's default when it is a border parameterizer.
 template <class Argument>
@@ -85,8 +104,8 @@ struct Solver_argument
 template <class Argument>
 struct Solver_argument<Argument, std::enable_if_t<Is_solver_traits<Argument>::value>>
 {
-  using Eigen_solver = typename Argument::Solver;
-  using type = std::conditional_t<Is_simplicial_cholesky<Eigen_solver>::value, Eigen_solver, Default_sparse_solver>;
+  using Cholesky = typename Simplicial_cholesky_form<typename Argument::Solver>::type;
+  using type = std::conditional_t<std::is_void<Cholesky>::value, Default_sparse_solver, Cholesky>;
 };
 
 /// The border condition: the fifth argument, or the border parameterizer's (second), or free.
