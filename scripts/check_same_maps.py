@@ -8,7 +8,8 @@ Runs both binaries on every mesh of DIR (default ../shared/data/meshes) with eve
 README lists (each metric, each energy, each border condition, --cones 0, --keep-overlaps) and
 compares, case by case:
   - the exit status and the error line (a refused case must be refused for the same reason);
-  - the OBJ: the same vertices and faces, every UV within 1e-12 of the UV extent;
+  - the OBJ: the same vertices and faces, every UV within 1e-12 of the UV extent; where they
+    differ, whether the UV edge lengths agree (to 1e-9 of the extent): the charts only moved;
   - the JSON figures: strings equal, numbers within 1e-9 relative (timings are skipped; the
     figures of rounding, such as the layout's length error, are the same below 1e-8).
 Prints one line per case that differs and a summary; exits 1 if any case differs.
@@ -27,6 +28,7 @@ import sys
 import tempfile
 
 UV_TOLERANCE = 1e-12       # relative to the largest |UV| of the map
+SHAPE_TOLERANCE = 1e-9     # of the UV extent, for UV edge lengths when the UVs differ
 FIGURE_TOLERANCE = 1e-9    # relative, for the JSON numbers derived from the UVs
 SKIPPED_KEYS = ("input", "output")
 # Figures that measure rounding (a layout's edge lengths against the metric's, a seam's two
@@ -80,6 +82,19 @@ def read_obj(path):
     return v, vt, f
 
 
+def edge_length_difference(vt0, vt1, faces, extent):
+    """The largest difference of a face's UV edge length between two maps with the same faces,
+    relative to the UV extent: zero when they differ by a rigid motion of each chart (the
+    propagation's root, or the packing's order, chosen by a comparison that rounding can tip)."""
+    worst = 0.0
+    for f in faces:
+        corners = [int(c.split("/")[1]) - 1 for c in f]
+        for i in range(len(corners)):
+            a, b = corners[i], corners[(i + 1) % len(corners)]
+            worst = max(worst, abs(math.dist(vt0[a], vt0[b]) - math.dist(vt1[a], vt1[b])))
+    return worst / extent
+
+
 def number_differs(a, b):
     if a is None or b is None:
         return a is not b
@@ -121,7 +136,10 @@ def differences(ref, new):
         extent = max((max(abs(u), abs(w)) for u, w in vt0), default=1.0)
         worst = max((max(abs(a[0] - b[0]), abs(a[1] - b[1])) for a, b in zip(vt0, vt1)), default=0.0)
         if worst > UV_TOLERANCE * extent:
-            found.append("UVs differ by %.3g of the extent" % (worst / extent))
+            shape = edge_length_difference(vt0, vt1, f0, extent)
+            found.append("UVs differ by %.3g of the extent (UV edge lengths by %.3g of it: %s)" %
+                         (worst / extent, shape, "the same up to a rigid motion of each chart"
+                          if shape <= SHAPE_TOLERANCE else "another map"))
     return found
 
 
