@@ -218,9 +218,9 @@ inline bool is_blank(std::string_view line)
   return std::all_of(line.begin(), line.end(), [](char c) { return is_space(c); });
 }
 
-/// Parses the whole token as a double; accepts a leading '+'. Non-finite values parse (the
-/// caller decides), trailing characters do not.
-inline bool parse_double(std::string_view token, double& value)
+/// Parses the whole token as a number; accepts a leading '+', no trailing characters.
+template <class Number>
+bool parse_whole(std::string_view token, Number& value)
 {
   if(!token.empty() && token.front() == '+')
     token.remove_prefix(1);
@@ -230,15 +230,16 @@ inline bool parse_double(std::string_view token, double& value)
   return r.ec == std::errc() && r.ptr == token.data() + token.size();
 }
 
+/// Parses the whole token as a double. Non-finite values parse (the caller decides).
+inline bool parse_double(std::string_view token, double& value)
+{
+  return parse_whole(token, value);
+}
+
 /// Parses the whole token as a signed integer.
 inline bool parse_integer(std::string_view token, long long& value)
 {
-  if(!token.empty() && token.front() == '+')
-    token.remove_prefix(1);
-  if(token.empty())
-    return false;
-  const std::from_chars_result r = std::from_chars(token.data(), token.data() + token.size(), value);
-  return r.ec == std::errc() && r.ptr == token.data() + token.size();
+  return parse_whole(token, value);
 }
 
 /// A coordinate: a finite double, or a refusal naming the line, the vertex and the token.
