@@ -550,6 +550,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["isolated_vertices_dropped"] = read.isolated_vertices.size();
   j["vertices_split"] = read.split_vertices.size();
   j["faces_triangulated"] = read.triangulated_faces;
+  j["faces_reoriented"] = read.reoriented_faces.size();
   j["repairs"] = read.repairs();
   j["seconds_read"] = seconds.read;
   j["seconds_cones"] = t.seconds_cones;

@@ -10,8 +10,9 @@ compares, case by case:
   - the exit status and the error line (a refused case must be refused for the same reason);
   - the OBJ: the same vertices and faces, every UV within 1e-12 of the UV extent; where they
     differ, whether the UV edge lengths agree (to 1e-9 of the extent): the charts only moved;
-  - the JSON figures: strings equal, numbers within 1e-9 relative (timings are skipped; the
-    figures of rounding, such as the layout's length error, are the same below 1e-8).
+  - the JSON figures: strings equal, numbers within 1e-9 relative (timings are skipped, and
+    figures the reference does not write; the figures of rounding, such as the layout's
+    length error, are the same below 1e-8).
 Prints one line per case that differs and a summary; exits 1 if any case differs.
 With --cache, the reference's results are kept in DIR and read back on the next run (the
 reference binary is then not run again: clear DIR when it changes); CANDIDATE "-" only fills it.
@@ -119,6 +120,8 @@ def differences(ref, new):
     for key in sorted(set(ref["json"]) | set(new["json"])):
         if key.startswith("seconds_") or key in SKIPPED_KEYS:
             continue
+        if key not in ref["json"]:
+            continue  # a figure the candidate adds is no change of the map
         a, b = ref["json"].get(key, "<missing>"), new["json"].get(key, "<missing>")
         if key in ROUNDING_KEYS and isinstance(a, float) and isinstance(b, float) and \
                 max(abs(a), abs(b)) < ROUNDING_LEVEL:

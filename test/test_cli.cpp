@@ -330,6 +330,19 @@ TEST(Cli, QuadFace)
   EXPECT_NE(json.find("\"repairs\":[\"triangulated 1 polygon\"]"), std::string::npos) << json;
 }
 
+// Faces that disagree in orientation are turned to agree, and the JSON counts them.
+TEST(Cli, ReorientedFacesAreCounted)
+{
+  Sandbox box;
+  write_text(box.file("disagree.off"), "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 3 2\n");
+  const Sandbox::Result r = box.run("disagree.off -o out.obj --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string json = lines_of(r.out).at(0);
+  EXPECT_EQ(json_value(json, "faces_reoriented"), "1");
+  EXPECT_EQ(json_value(json, "faces_triangulated"), "0");
+  EXPECT_NE(json.find("reoriented 1 face"), std::string::npos) << json;
+}
+
 TEST(Cli, ZeroAreaFace)
 {
   Sandbox box;

@@ -16,8 +16,12 @@
 #include <ICM/layout/Chart_packing.h>
 #include <ICM/layout/Layout.h>
 #include <ICM/layout/Unflip.h>
+#include <ICM/internal/Box_pairs.h>
+#include <ICM/internal/Exact_predicates.h>
 #include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/optimum/Optimal_metric.h>
+
+#include <CGAL/MP_Float.h>
 
 #include <algorithm>
 #include <array>
@@ -391,6 +395,111 @@ TEST(BorderOverlaps, RejectsBadInput)
   EXPECT_THROW(ICM::overlapping_face_pairs(triangle, {{0, 0}, {1, 0}, {0, 1}}, {3}), std::invalid_argument);
 }
 
+namespace {
+
+/// The sign of (q - p) x (r - p) in CGAL's exact MP_Float, where products of doubles are exact.
+int mp_float_orientation(const Uv& p, const Uv& q, const Uv& r)
+{
+  using Exact = CGAL::MP_Float;
+  const Exact d = (Exact(q[0]) - Exact(p[0])) * (Exact(r[1]) - Exact(p[1])) -
+                  (Exact(q[1]) - Exact(p[1])) * (Exact(r[0]) - Exact(p[0]));
+  return static_cast<int>(CGAL::sign(d));
+}
+
+} // namespace
+
+// Points on a line and one ulp off it, at unit size and at 1e-200 and 1e+200: the filter
+// cannot decide these, the expansion arithmetic must. Every answer against MP_Float.
+TEST(ExactPredicates, OrientationAgreesWithExactArithmeticOnNearlyCollinearPoints)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int collinear = 0, rounded_wrong = 0;
+  for(double scale : {1.0, 1e-200, 1e200, 3.0e-5})
+    for(int trial = 0; trial < 4000; ++trial)
+    {
+      const Uv p = {scale * unit(random), scale * unit(random)};
+      const Uv q = {scale * unit(random), scale * unit(random)};
+      const double t = trial % 4 == 0 ? 0.5 : unit(random) * 3; // midpoints are often exact
+      Uv r = {p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])};
+      if(trial % 3 == 1)
+        r[1] = std::nextafter(r[1], HUGE_VAL);
+      else if(trial % 3 == 2)
+        r[0] = std::nextafter(r[0], -HUGE_VAL);
+      const int expected = mp_float_orientation(p, q, r);
+      ASSERT_EQ(ICM::internal::orientation(p, q, r), expected) << "scale " << scale << " trial " << trial;
+      ASSERT_EQ(ICM::internal::orientation(q, p, r), -expected);
+      const double rounded = ICM::internal::twice_signed_area(p, q, r);
+      collinear += expected == 0;
+      rounded_wrong += (rounded > 0) - (rounded < 0) != expected;
+    }
+  EXPECT_GT(collinear, 100);      // the exactly collinear case occurs,
+  EXPECT_GT(rounded_wrong, 1000); // and the rounded determinant gets many cases wrong
+}
+
+TEST(ExactPredicates, OrientationOfRandomAndExtremePoints)
+{
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for(int trial = 0; trial < 20000; ++trial)
+  {
+    const Uv p = {unit(random), unit(random)}, q = {unit(random), unit(random)}, r = {unit(random), unit(random)};
+    ASSERT_EQ(ICM::internal::orientation(p, q, r), mp_float_orientation(p, q, r));
+  }
+  // Coordinates whose differences overflow a double, and points spread over 600 decades.
+  const double big = 1.7e308;
+  EXPECT_EQ(ICM::internal::orientation({-big, -big}, {big, -big}, {0, big}), 1);
+  EXPECT_EQ(ICM::internal::orientation({-big, -big}, {big, big}, {0, 0}), 0);
+  EXPECT_EQ(ICM::internal::orientation({1e-300, 0}, {1e300, 0}, {1, 1e-300}), 1);
+  EXPECT_EQ(ICM::internal::orientation({0, 0}, {1, 0}, {2, 0}), 0);
+  EXPECT_EQ(ICM::internal::orientation({0, 0}, {0, 0}, {2, 3}), 0);
+}
+
+// The box tree's pairs are exactly the pairs an all-pairs test finds: random boxes, flat
+// and point boxes (axis-parallel edges, vertices), boxes that only touch, duplicates, and
+// clusters a millionfold smaller than the rest.
+TEST(BoxPairs, TreeFindsExactlyTheMeetingPairs)
+{
+  using ICM::internal::Box2;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for(int n : {0, 1, 2, 9, 17, 300, 2000})
+  {
+    std::vector<Box2> boxes;
+    for(int i = 0; i < n; ++i)
+    {
+      const double size = (i % 5 == 0) ? 1e-6 : 0.05;
+      const Uv corner =
+        i % 5 == 0 ? Uv{0.5 + 1e-4 * unit(random), 0.5 + 1e-4 * unit(random)} : Uv{unit(random), unit(random)};
+      Box2 box = Box2::around(corner);
+      box.extend(
+        Uv{corner[0] + (i % 7 == 1 ? 0.0 : size * unit(random)), corner[1] + (i % 7 == 2 ? 0.0 : size * unit(random))});
+      boxes.push_back(box);
+      if(i % 11 == 3)
+        boxes.push_back(box); // a duplicate
+      if(i % 13 == 4)
+        boxes.push_back({{box.high[0], box.low[1]}, {box.high[0] + 0.01, box.high[1]}}); // touches
+    }
+    std::vector<std::pair<int, int>> expected, found;
+    for(int i = 0; i < static_cast<int>(boxes.size()); ++i)
+      for(int j = i + 1; j < static_cast<int>(boxes.size()); ++j)
+        if(boxes[i].meets(boxes[j]))
+          expected.emplace_back(i, j);
+    ICM::internal::Box_tree(boxes).for_each_meeting_pair([&](int i, int j) {
+      found.emplace_back(i, j);
+      return true;
+    });
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(found, expected) << n << " boxes";
+    if(expected.size() > 1)
+    {
+      int visits = 0;
+      ICM::internal::Box_tree(boxes).for_each_meeting_pair([&](int, int) { return ++visits < 2; });
+      EXPECT_EQ(visits, 2) << "stopped at the second pair";
+    }
+  }
+}
+
 // Not a pass/fail figure: prints how long a 100k-edge border takes (see the report).
 TEST(BorderOverlaps, LargeCircleBorderTiming)
 {
@@ -406,6 +515,21 @@ TEST(BorderOverlaps, LargeCircleBorderTiming)
   const ICM::Border_overlaps overlaps = ICM::count_border_overlaps(index, uv);
   const double seconds = seconds_since(start);
   EXPECT_EQ(overlaps.crossing_pairs, 0);
+
+  // A square of the same number of edges: its sides' boxes are flat and share one abscissa
+  // (or ordinate) along a whole side, the case a sweep over one axis makes quadratic.
+  std::vector<Uv> square(n);
+  for(int i = 0; i < n; ++i)
+  {
+    const int side = 4 * i / n;
+    const double t = 4.0 * i / n - side;
+    square[i] = side == 0 ? Uv{t, 0} : side == 1 ? Uv{1, t} : side == 2 ? Uv{1 - t, 1} : Uv{0, 1 - t};
+  }
+  std::vector<Uv> square_uv;
+  const Mesh_index square_index = fan(square, square_uv);
+  const auto start_square = std::chrono::steady_clock::now();
+  EXPECT_EQ(ICM::count_border_overlaps(square_index, square_uv).crossing_pairs, 0);
+  const double seconds_square = seconds_since(start_square);
 
   // The same circle with a slit folded over: one vertex pushed across the far side.
   std::vector<Uv> folded = uv;
@@ -424,8 +548,9 @@ TEST(BorderOverlaps, LargeCircleBorderTiming)
   EXPECT_FALSE(faces_overlap);
 
   std::cout << "[ timing ] count_border_overlaps, " << n << " border edges: " << seconds * 1e3
-            << " ms (folded: " << seconds_folded * 1e3 << " ms); overlapping_face_pairs, "
-            << disk_index.number_of_faces() << " faces: " << seconds_faces * 1e3 << " ms\n";
+            << " ms (folded: " << seconds_folded * 1e3 << " ms, square: " << seconds_square * 1e3
+            << " ms); overlapping_face_pairs, " << disk_index.number_of_faces() << " faces: " << seconds_faces * 1e3
+            << " ms\n";
   RecordProperty("border_overlaps_100k_ms", static_cast<int>(seconds * 1e3));
 }
 

@@ -237,6 +237,24 @@ TEST(Surfaces, SeveralComponentsArePackedSideBySide)
   EXPECT_EQ(r.report.charts[1].cones.size() + r.report.charts[0].cones.size() >= 2, true);
 }
 
+// Two copies of nefertiti, one 1e200 times the other: in one UV map at their 3D scales the
+// small one would round to a point, so it is refused, and the reason says so (not that its
+// faces have no area, which in its own frame they have).
+TEST(Surfaces, AComponentTooSmallBesideTheRestIsRefusedByItsScale)
+{
+  Mesh mesh = read(icm_test::data_path("nefertiti.off"));
+  Mesh big = mesh;
+  for(Mesh::Vertex_index v : vertices(big))
+    big.point(v) = Kernel::Point_3(1e200 * big.point(v).x(), 1e200 * big.point(v).y(), 1e200 * big.point(v).z());
+  CGAL::copy_face_graph(big, mesh);
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
+  const ICM::Surface_parameterization_report report = ICM::parameterize(mesh, uv);
+  EXPECT_EQ(report.status, CGAL::Surface_mesh_parameterization::ERROR_WRONG_PARAMETER);
+  EXPECT_NE(report.message.find("component 0: "), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("1e-200 times the size of the mesh, too small to share one UV map"), std::string::npos)
+    << report.message;
+}
+
 TEST(Surfaces, UserConesWithPrescribedAndFreeAngles)
 {
   // Six cones of 270 degrees at the extremes of the sphere's axes carry 6 x pi/2 = 3 pi...

@@ -9,6 +9,7 @@
 
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -74,6 +75,20 @@ struct Status
   Status within(const std::string& context) const { return ok() ? *this : failure(code, context + message); }
 };
 
+namespace internal {
+
+/// A number for a message, to `digits` significant digits ("1e+308", "-2.5"), in the C
+/// locale whatever the program's global one.
+inline std::string message_number(double x, int digits = 6)
+{
+  std::ostringstream text;
+  text.imbue(std::locale::classic());
+  text.precision(digits);
+  text << x;
+  return text.str();
+}
+
+} // namespace internal
 } // namespace ICM
 
 #endif // ICM_STATUS_H

@@ -148,7 +148,9 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
     chart.boundary_loops = index.number_of_boundary_loops();
     chart.genus = index.genus();
     if(!indexed.ok())
-      return finish(indexed.code, "component " + std::to_string(c) + ": " + indexed.message);
+      return finish(indexed.code, "component " + std::to_string(c) + ": " + indexed.message +
+                                    (components > 1 ? internal::too_small_beside_the_rest(mesh, seeds[c], normalisation)
+                                                    : std::string()));
     std::vector<char> is_user_cone, component_seams;
     std::vector<double> prescribed;
     internal::component_cones_and_seams(mesh, index, vertices, user_cones, is_user_seam, !user_seams.empty(),

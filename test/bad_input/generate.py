@@ -241,13 +241,13 @@ write("scale_1e+300.off", off(grid(1e300)[0], T), 0, "")
 write("scale_1e-300.obj", obj(grid(1e-300)[0], T), 0, "")
 write("scale_1e+300_binary.ply", ply_binary(grid(1e300)[0], T, xyz="d", xyz_name="double"), 0, "")
 write("scale_offset_1e+12.off", off([(x + 1e12, y + 1e12, z) for x, y, z in P], T), 0, "")
-# A unit disk beside one 1e200 or 1e308 times larger: the reader no longer calls the small
-# faces degenerate (its corners at one point), but ICM::parameterize still does, on the whole
-# mesh's scale; expect 0 once it judges each component at its own.
+# A unit disk beside one 1e200 or 1e308 times larger: the reader takes both, but one UV map
+# whose charts keep their 3D scale cannot hold both (the small chart would round to a point
+# where it is packed), so ICM::parameterize refuses the small one and says why.
 for big in (1e200, 1e308):
     write(f"scale_two_disks_1e+{round(math.log10(big))}.off",
           off(P + [(x * big / 2 + big / 2, y * big / 2, z * big / 2) for x, y, z in P],
-              T + [tuple(i + len(P) for i in t) for t in T]), 1, "component 0: 18 degenerate (zero-area) face(s)")
+              T + [tuple(i + len(P) for i in t) for t in T]), 1, "too small to share one UV map with the rest")
 # A disk so large that its layout, scaled back to it, overflows: the writer names the extent.
 write("scale_layout_overflow.off", off(grid(1.7e308)[0], T), 1, "scaled back to the mesh's extent")
 # Coordinates whose differences overflow a double: refused by the extent, not a face.

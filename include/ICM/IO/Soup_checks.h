@@ -12,6 +12,8 @@
 #define ICM_IO_SOUP_CHECKS_H
 
 #include <ICM/IO/Soup_reading.h>
+#include <ICM/Status.h>
+#include <ICM/internal/Exact_predicates.h>
 
 #include <algorithm>
 #include <array>
@@ -265,16 +267,6 @@ inline Edge_check check_edges(const Polygon_soup& soup, const std::vector<std::s
   return result;
 }
 
-/// A coordinate for a message: 3 significant digits ("1e+308", "-2.5").
-inline std::string short_number(double x)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(3);
-  s << x;
-  return s.str();
-}
-
 /// Refuses a soup whose extent along some axis is beyond a double: the difference of two of
 /// its coordinates (an edge vector) would overflow, and no length, area or normalisation
 /// could be computed.
@@ -291,8 +283,8 @@ inline std::string check_extent(const Polygon_soup& soup)
       high = std::max(high, p[k]);
     }
     if(!std::isfinite(high - low))
-      return std::string("the mesh's extent along ") + "xyz"[k] + ", from " + short_number(low) + " to " +
-             short_number(high) +
+      return std::string("the mesh's extent along ") + "xyz"[k] + ", from " + message_number(low, 3) + " to " +
+             message_number(high, 3) +
              ", is beyond the range of a double (the difference of two coordinates "
              "overflows): scale the mesh down";
   }
@@ -346,38 +338,11 @@ inline std::string check_triangle_areas(const Polygon_soup& soup)
   return {};
 }
 
-/// Orientation of `c` against the line from `a` to `b`: > 0 on its left.
-inline double orientation_2(const std::array<double, 2>& a, const std::array<double, 2>& b,
-                            const std::array<double, 2>& c)
-{
-  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
-/// Whether `c`, on the line through `a` and `b`, lies on the segment between them.
-inline bool within_segment(const std::array<double, 2>& a, const std::array<double, 2>& b,
-                           const std::array<double, 2>& c)
-{
-  return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
-         c[1] <= std::max(a[1], b[1]);
-}
-
-/// Whether the closed segments `a b` and `c d` have a point in common.
-inline bool segments_meet(const std::array<double, 2>& a, const std::array<double, 2>& b,
-                          const std::array<double, 2>& c, const std::array<double, 2>& d)
-{
-  const double o1 = orientation_2(a, b, c), o2 = orientation_2(a, b, d);
-  const double o3 = orientation_2(c, d, a), o4 = orientation_2(c, d, b);
-  if(((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
-    return true;
-  return (o1 == 0 && within_segment(a, b, c)) || (o2 == 0 && within_segment(a, b, d)) ||
-         (o3 == 0 && within_segment(c, d, a)) || (o4 == 0 && within_segment(c, d, b));
-}
-
 /// The corners of polygon `p` on its best-fit plane, the plane of Newell's normal (for a
 /// plane polygon, its own plane, along which CGAL's triangulate_face projects it too), in
 /// units of its largest coordinate difference. Empty when that normal is zero: the corners
 /// are collinear, or the polygon's loops cancel out.
-inline std::vector<std::array<double, 2>> corners_on_best_fit_plane(const Polygon_soup& soup, std::size_t p)
+inline std::vector<Uv> corners_on_best_fit_plane(const Polygon_soup& soup, std::size_t p)
 {
   const auto& polygon = soup.polygons[p];
   const auto& origin = soup.points[polygon[0]];
@@ -419,7 +384,7 @@ inline std::vector<std::array<double, 2>> corners_on_best_fit_plane(const Polygo
   for(double& c : u)
     c /= u_length;
   const std::array<double, 3> v{n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
-  std::vector<std::array<double, 2>> plane(x.size());
+  std::vector<Uv> plane(x.size());
   for(std::size_t i = 0; i < x.size(); ++i)
     plane[i] = {x[i][0] * u[0] + x[i][1] * u[1] + x[i][2] * u[2], x[i][0] * v[0] + x[i][1] * v[1] + x[i][2] * v[2]};
   return plane;
@@ -435,7 +400,7 @@ struct Side_meeting
 /// The first two sides of the plane polygon `q` that meet other than at their common corner
 /// (a side folding back onto the next counts). Sides sorted by their smallest abscissa, so
 /// that only sides whose abscissae overlap are compared.
-inline Side_meeting sides_that_meet(const std::vector<std::array<double, 2>>& q)
+inline Side_meeting sides_that_meet(const std::vector<Uv>& q)
 {
   const std::size_t n = q.size();
   auto end_of = [&](std::size_t side) { return q[(side + 1) % n]; };
@@ -459,8 +424,7 @@ inline Side_meeting sides_that_meet(const std::vector<std::array<double, 2>>& q)
         // Neighbours: they meet at their common corner only, unless the later one folds back.
         const std::size_t before = second == first + 1 ? first : second;
         const auto &a0 = q[before], &corner = q[(before + 1) % n], &a2 = q[(before + 2) % n];
-        meet = orientation_2(a0, corner, a2) == 0 &&
-               (a2[0] - corner[0]) * (a0[0] - corner[0]) + (a2[1] - corner[1]) * (a0[1] - corner[1]) > 0;
+        meet = orientation(a0, corner, a2) == 0 && !collinear_are_ordered_along_line(a0, corner, a2);
       }
       else
         meet = segments_meet(q[i], end_of(i), q[j], end_of(j));
@@ -480,7 +444,7 @@ inline std::string why_not_triangulable(const Polygon_soup& soup, std::size_t p,
 {
   const auto& polygon = soup.polygons[p];
   const std::string face = soup.describe_polygon(p) + " (" + std::to_string(polygon.size()) + " sides)";
-  const std::vector<std::array<double, 2>> plane = corners_on_best_fit_plane(soup, p);
+  const std::vector<Uv> plane = corners_on_best_fit_plane(soup, p);
   if(plane.empty())
     return face + " cannot be triangulated: its corners do not span a plane polygon (they are collinear, or its "
                   "loops cancel out)";

@@ -7,6 +7,8 @@
 #ifndef ICM_IO_UV_MESH_H
 #define ICM_IO_UV_MESH_H
 
+#include <ICM/Status.h>
+
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
@@ -58,16 +60,6 @@ constexpr double log_area_ratio_clamp = 50.;
 
 namespace internal {
 
-/// A value formatted for a label or a message: up to 3 significant digits.
-inline std::string format_label(double x)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s.precision(3);
-  s << x;
-  return s.str();
-}
-
 /// Why a UV that is not finite overflowed, when it is infinite rather than NaN: parameterizers
 /// lay a mesh out at unit size and scale the UVs back to the mesh's (each chart's UV area is
 /// its 3D area), and near the largest double the layout can outgrow it. Empty for a NaN.
@@ -86,7 +78,7 @@ inline std::string why_uvs_overflow(const IO::Uv_mesh& m, const std::array<doubl
     }
     extent = (std::max)(extent, high - low);
   }
-  return ": the layout, scaled back to the mesh's extent (" + format_label(extent) +
+  return ": the layout, scaled back to the mesh's extent (" + internal::message_number(extent, 3) +
          "), is beyond the range of a double (scale the mesh down)";
 }
 

@@ -339,8 +339,9 @@ inline void put_svg_legend(std::ostream& os, const Svg_frame& frame, const IO::S
   os << "\" height=\"14\" fill=\"url(#icm_log_area_ratio)\" stroke=\"#222222\" "
         "stroke-width=\"0.5\"/>\n";
   const double label_y = bar_y + 30.;
-  const std::pair<double, std::string> labels[3] = {
-    {bar_x, "-" + format_label(r)}, {bar_x + 0.5 * bar_w, "0"}, {bar_x + bar_w, "+" + format_label(r)}};
+  const std::pair<double, std::string> labels[3] = {{bar_x, "-" + internal::message_number(r, 3)},
+                                                    {bar_x + 0.5 * bar_w, "0"},
+                                                    {bar_x + bar_w, "+" + internal::message_number(r, 3)}};
   for(const auto& l : labels)
   {
     os << "<text x=\"";

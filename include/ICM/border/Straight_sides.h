@@ -118,7 +118,7 @@ inline int count_flipped_faces_among(const Mesh_index& index, const std::vector<
   for(int f : faces)
   {
     const std::array<int, 3>& c = index.faces[f];
-    flipped += !(twice_signed_area(uv[c[0]], uv[c[1]], uv[c[2]]) > 0);
+    flipped += !(internal::twice_signed_area(uv[c[0]], uv[c[1]], uv[c[2]]) > 0);
   }
   return flipped;
 }

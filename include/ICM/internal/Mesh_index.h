@@ -8,9 +8,9 @@
 
 #include <ICM/Status.h>
 #include <ICM/internal/Unit_frame.h>
+#include <ICM/internal/Vector_geometry.h>
 
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
-#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Dynamic_property_map.h>
 
@@ -74,15 +74,6 @@ inline std::string describe_topology(const Mesh_index& index)
   out << index.number_of_boundary_loops() << " boundary loop" << (index.number_of_boundary_loops() == 1 ? "" : "s")
       << ", genus " << index.genus();
   return out.str();
-}
-
-inline double triangle_area(const std::array<double, 3>& a, const std::array<double, 3>& b,
-                            const std::array<double, 3>& c)
-{
-  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
-  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  return 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
 }
 
 inline double squared_distance(const std::array<double, 3>& a, const std::array<double, 3>& b)
@@ -287,6 +278,24 @@ inline Status check_geometry(const Mesh_index& index)
   return {};
 }
 
+/// Calls `visit(h)` for the halfedges of face `f` from `halfedge(f)` on, in the order of
+/// `CGAL::halfedges_around_face`, until `visit` returns false. A loop over `next`: CGAL's
+/// circulator ranges would bring the BGL iterator header into every TU of the disk
+/// parameterizer for these few loops.
+template <class TriangleMesh, class Visit>
+void for_each_halfedge_of_face(typename boost::graph_traits<TriangleMesh>::face_descriptor f, const TriangleMesh& mesh,
+                               Visit&& visit)
+{
+  const auto first = halfedge(f, mesh);
+  auto h = first;
+  do
+  {
+    if(!visit(h))
+      return;
+    h = next(h, mesh);
+  } while(h != first);
+}
+
 /// The faces of the connected component of `seed`, in the order of CGAL's
 /// `Polygon_mesh_processing::connected_component` (depth first, each face where it is first
 /// taken from the stack). CGAL marks the faces seen in a std::set, a large share of the
@@ -308,12 +317,12 @@ faces_of_component(const TriangleMesh& mesh, typename boost::graph_traits<Triang
       continue;
     put(seen, f, true);
     component.push_back(f);
-    for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
-    {
+    for_each_halfedge_of_face(f, mesh, [&](auto h) {
       const face_descriptor g = face(opposite(h, mesh), mesh);
       if(g != boost::graph_traits<TriangleMesh>::null_face())
         stack.push_back(g);
-    }
+      return true;
+    });
   }
   return component;
 }
@@ -350,18 +359,21 @@ Status index_mesh(const TriangleMesh& mesh, typename boost::graph_traits<Triangl
   auto local = get(Vertex_int_tag(), mesh);
   // Dynamic maps start with an unspecified value: mark every vertex of the component unseen.
   for(face_descriptor f : component)
-    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
-      put(local, v, -1);
+    for_each_halfedge_of_face(f, mesh, [&](auto h) {
+      put(local, target(h, mesh), -1);
+      return true;
+    });
 
   index.faces.reserve(component.size());
   for(face_descriptor f : component)
   {
     std::array<int, 3> tri{};
     int corners = 0;
-    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
-    {
+    bool more_than_3 = false;
+    for_each_halfedge_of_face(f, mesh, [&](auto h) {
       if(corners == 3)
-        return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with more than 3 sides"};
+        return !(more_than_3 = true);
+      const vertex_descriptor v = target(h, mesh);
       int id = get(local, v);
       if(id < 0)
       {
@@ -372,7 +384,10 @@ Status index_mesh(const TriangleMesh& mesh, typename boost::graph_traits<Triangl
         index.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
       }
       tri[corners++] = id;
-    }
+      return true;
+    });
+    if(more_than_3)
+      return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with more than 3 sides"};
     if(corners != 3)
       return {ERROR_NON_TRIANGULAR_MESH, "the mesh has a face with fewer than 3 sides"};
     index.faces.push_back(tri);

@@ -70,12 +70,7 @@ private:
     if(status_.ok())
       status_ = Status::wrong_parameter("option " + prefix_ + name + " = " + value + ": " + why);
   }
-  static std::string number(double value)
-  {
-    std::ostringstream text;
-    text << value;
-    return text.str();
-  }
+  static std::string number(double value) { return message_number(value); }
 
   std::string prefix_;
   Status status_;

@@ -315,6 +315,25 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   return removed;
 }
 
+/// For a component refused in the mesh's one frame: why, when in its own frame it would pass.
+/// Its faces then have area but vanish beside the rest of the mesh, and no UV map in which
+/// every chart keeps its 3D scale can hold both (the small chart's UVs would round to one
+/// point where it is packed). Empty when the component fails in its own frame too.
+template <class TriangleMesh>
+std::string too_small_beside_the_rest(const TriangleMesh& mesh,
+                                      typename boost::graph_traits<TriangleMesh>::face_descriptor seed,
+                                      const Normalisation& common)
+{
+  Mesh_index own;
+  std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor> vertices;
+  if(!index_mesh(mesh, seed, get(CGAL::vertex_point, mesh), own, vertices).ok())
+    return {};
+  return "; in its own frame its faces have area, but it is " +
+         message_number(own.normalisation.scale / common.scale, 3) +
+         " times the size of the mesh, too small to share one UV map with the rest at their 3D scales "
+         "(parameterize it on its own)";
+}
+
 /// The normalisation of the corners of every face of `mesh`: one frame for all components.
 template <class TriangleMesh>
 Normalisation normalisation_of_corners(const TriangleMesh& mesh)
@@ -382,7 +401,7 @@ void pack_and_write_charts(
     for(const auto& f : disk.faces)
     {
       const Uv &a = chart_uvs[c][f[0]], &b = chart_uvs[c][f[1]], &d = chart_uvs[c][f[2]];
-      uv_area += 0.5 * ((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+      uv_area += 0.5 * twice_signed_area(a, b, d);
       area += triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
     }
     const double scale = std::sqrt(area / uv_area);

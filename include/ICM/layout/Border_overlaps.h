@@ -9,27 +9,20 @@
 // therefore measures the overlap in O(n log n + k), n border edges and k candidate pairs,
 // instead of testing every pair of faces.
 //
-// Like Distortion.h this is a diagnostic: it never runs inside parameterize(), so bad input
-// (a UV array of the wrong size, a non-finite coordinate) is reported by std::invalid_argument.
+// The pipeline calls it on finite layouts only; a caller's bad input (a UV array of the wrong
+// size, a non-finite coordinate) is reported by std::invalid_argument, as in Distortion.h.
 //
-// Robustness: candidate pairs come from CGAL's box intersection on the edges' bounding boxes,
-// which are exact for double coordinates; every candidate is then decided by an exact
-// orientation predicate (CGAL's interval arithmetic, and its exact MP_Float where the
-// interval cannot tell the sign), the one predicate the tests below need. A layout whose two
-// border vertices merely touch is therefore reported, however close to the rounding error it
-// is. (The Exact_predicates_inexact_constructions_kernel would decide the same, at about
-// twice the preprocessed size of everything else the disk parameterizer includes.)
+// Robustness: candidate pairs are the pairs of meeting bounding boxes (Box_pairs.h), which
+// are exact for double coordinates; every candidate is then decided by the exact orientation
+// (Exact_predicates.h). A layout whose two border vertices merely touch is therefore
+// reported, however close to the rounding error it is.
 
 #ifndef ICM_LAYOUT_BORDER_OVERLAPS_H
 #define ICM_LAYOUT_BORDER_OVERLAPS_H
 
-#include <ICM/layout/Layout.h>
+#include <ICM/internal/Box_pairs.h>
+#include <ICM/internal/Exact_predicates.h>
 #include <ICM/internal/Mesh_index.h>
-
-#include <CGAL/Bbox_2.h>
-#include <CGAL/Interval_nt.h>
-#include <CGAL/MP_Float.h>
-#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <array>
@@ -47,54 +40,13 @@ struct Border_overlaps
   /// Number of pairs in `pairs`.
   int crossing_pairs = 0;
   /// Edge ids `(e, f)` of the index, `e < f`, sorted: a deterministic list, whatever order
-  /// the box intersection visits the candidates in.
+  /// the box tree visits the candidates in.
   std::vector<std::pair<int, int>> pairs;
 
   bool empty() const { return crossing_pairs == 0; }
 };
 
 namespace internal {
-
-/// A bounding box carrying the id of its edge or face. Ids are explicit because the box
-/// intersection sorts copies of the boxes, so addresses cannot identify them.
-using Overlap_box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int, CGAL::Box_intersection_d::ID_EXPLICIT>;
-
-/// The side of r relative to the line pq (the sign of (q - p) x (r - p)), exactly.
-inline CGAL::Orientation orientation(const Uv& p, const Uv& q, const Uv& r)
-{
-  using Interval = CGAL::Interval_nt<>;
-  const Interval d =
-    (Interval(q[0]) - p[0]) * (Interval(r[1]) - p[1]) - (Interval(q[1]) - p[1]) * (Interval(r[0]) - p[0]);
-  if(d.inf() > 0)
-    return CGAL::LEFT_TURN;
-  if(d.sup() < 0)
-    return CGAL::RIGHT_TURN;
-  // Differences and products of doubles are exact in MP_Float.
-  using Exact = CGAL::MP_Float;
-  const Exact e = (Exact(q[0]) - Exact(p[0])) * (Exact(r[1]) - Exact(p[1])) -
-                  (Exact(q[1]) - Exact(p[1])) * (Exact(r[0]) - Exact(p[0]));
-  return static_cast<CGAL::Orientation>(CGAL::sign(e));
-}
-
-/// For collinear p, q, r: whether q lies on the closed segment pr (CGAL's
-/// `collinear_are_ordered_along_line`, by exact comparisons of coordinates).
-inline bool collinear_are_ordered_along_line(const Uv& p, const Uv& q, const Uv& r)
-{
-  for(int i = 0; i < 2; ++i)
-  {
-    if(p[i] < q[i])
-      return !(r[i] < q[i]);
-    if(q[i] < p[i])
-      return !(q[i] < r[i]);
-  }
-  return true; // q == p
-}
-
-/// Whether p lies on the closed segment rs (r != s).
-inline bool segment_has_on(const Uv& r, const Uv& s, const Uv& p)
-{
-  return orientation(r, s, p) == CGAL::COLLINEAR && collinear_are_ordered_along_line(r, p, s);
-}
 
 /// Rejects input the exact predicates cannot decide: NaN compares false with everything, so a
 /// non-finite coordinate would silently drop its edges from every box.
@@ -106,41 +58,6 @@ inline void check_uv_input(const Mesh_index& index, const std::vector<Uv>& uv, c
   for(std::size_t v = 0; v < uv.size(); ++v)
     if(!std::isfinite(uv[v][0]) || !std::isfinite(uv[v][1]))
       throw std::invalid_argument(std::string(caller) + ": vertex " + std::to_string(v) + " has a non-finite UV");
-}
-
-inline CGAL::Bbox_2 point_box(const Uv& p)
-{
-  return CGAL::Bbox_2(p[0], p[1], p[0], p[1]);
-}
-
-inline Overlap_box segment_box(const Uv& p, const Uv& q, int id)
-{
-  return Overlap_box(point_box(p) + point_box(q), id);
-}
-
-inline Overlap_box triangle_box(const Uv& p, const Uv& q, const Uv& r, int id)
-{
-  return Overlap_box(point_box(p) + point_box(q) + point_box(r), id);
-}
-
-/// Whether closed segments pq and rs meet. A zero-length border edge (two vertices at one
-/// UV) is still a point that can lie on another edge.
-inline bool segments_meet(const Uv& p, const Uv& q, const Uv& r, const Uv& s)
-{
-  const bool pq_point = (p == q), rs_point = (r == s);
-  if(pq_point && rs_point)
-    return p == r;
-  if(pq_point)
-    return segment_has_on(r, s, p);
-  if(rs_point)
-    return segment_has_on(p, q, r);
-  const int pq_r = orientation(p, q, r), pq_s = orientation(p, q, s);
-  const int rs_p = orientation(r, s, p), rs_q = orientation(r, s, q);
-  if(pq_r * pq_s > 0 || rs_p * rs_q > 0)
-    return false;            // one segment lies strictly on one side of the other's line
-  if(pq_r == 0 && pq_s == 0) // on one line: they meet where one holds an end of the other
-    return segment_has_on(p, q, r) || segment_has_on(p, q, s) || segment_has_on(r, s, p);
-  return true;
 }
 
 /// Whether border edges `e` and `f` meet beyond what the mesh itself makes them share.
@@ -155,8 +72,7 @@ inline bool border_edges_meet(const Mesh_index& index, const std::vector<Uv>& uv
       if(a[i] == b[j])
       {
         const Uv &shared = uv[a[i]], &far_a = uv[a[1 - i]], &far_b = uv[b[1 - j]];
-        return orientation(shared, far_a, far_b) == CGAL::COLLINEAR &&
-               !collinear_are_ordered_along_line(far_a, shared, far_b);
+        return orientation(shared, far_a, far_b) == 0 && !collinear_are_ordered_along_line(far_a, shared, far_b);
       }
   return segments_meet(uv[a[0]], uv[a[1]], uv[b[0]], uv[b[1]]);
 }
@@ -174,7 +90,7 @@ inline std::vector<std::pair<int, int>> normalized_pairs(std::vector<std::pair<i
 /// Whether the line of some edge of triangle `t` (of orientation `o`, so its interior is on
 /// the `o` side of each edge) has no corner of `u` strictly on the interior side: that line
 /// then separates the two interiors.
-inline bool separated_by_an_edge_of(const std::array<Uv, 3>& t, CGAL::Orientation o, const std::array<Uv, 3>& u)
+inline bool separated_by_an_edge_of(const std::array<Uv, 3>& t, int o, const std::array<Uv, 3>& u)
 {
   for(int i = 0; i < 3; ++i)
   {
@@ -191,9 +107,9 @@ inline bool separated_by_an_edge_of(const std::array<Uv, 3>& t, CGAL::Orientatio
 /// triangle has no interior and overlaps nothing.
 inline bool triangle_interiors_overlap(const std::array<Uv, 3>& t, const std::array<Uv, 3>& u)
 {
-  const CGAL::Orientation ot = orientation(t[0], t[1], t[2]);
-  const CGAL::Orientation ou = orientation(u[0], u[1], u[2]);
-  if(ot == CGAL::COLLINEAR || ou == CGAL::COLLINEAR)
+  const int ot = orientation(t[0], t[1], t[2]);
+  const int ou = orientation(u[0], u[1], u[2]);
+  if(ot == 0 || ou == 0)
     return false;
   return !separated_by_an_edge_of(t, ot, u) && !separated_by_an_edge_of(u, ou, t);
 }
@@ -210,25 +126,24 @@ inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index, c
                                                       const std::vector<int>& faces, bool first_only)
 {
   check_uv_input(index, uv, "face overlaps");
-  std::vector<Overlap_box> boxes;
+  std::vector<Box2> boxes;
   boxes.reserve(faces.size());
   for(int f : faces)
   {
     if(f < 0 || f >= index.number_of_faces())
       throw std::invalid_argument("face overlaps: no face " + std::to_string(f));
     const auto& v = index.faces[f];
-    boxes.push_back(triangle_box(uv[v[0]], uv[v[1]], uv[v[2]], f));
+    Box2 box = Box2::around(uv[v[0]]);
+    box.extend(uv[v[1]]);
+    box.extend(uv[v[2]]);
+    boxes.push_back(box);
   }
   std::vector<std::pair<int, int>> pairs;
-  // box_intersection_d cannot be stopped but by an exception; after the first hit the
-  // remaining box pairs are passed over without their exact test, the costly part.
-  auto test = [&](const Overlap_box& a, const Overlap_box& b) {
-    if(first_only && !pairs.empty())
-      return;
-    if(triangle_interiors_overlap(uv_triangle(index, uv, a.info()), uv_triangle(index, uv, b.info())))
-      pairs.emplace_back(a.info(), b.info());
-  };
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), test);
+  Box_tree(boxes).for_each_meeting_pair([&](int i, int j) {
+    if(triangle_interiors_overlap(uv_triangle(index, uv, faces[i]), uv_triangle(index, uv, faces[j])))
+      pairs.emplace_back(faces[i], faces[j]);
+    return !(first_only && !pairs.empty());
+  });
   return normalized_pairs(std::move(pairs));
 }
 
@@ -248,18 +163,23 @@ inline std::vector<std::pair<int, int>> face_overlaps(const Mesh_index& index, c
 inline Border_overlaps count_border_overlaps(const internal::Mesh_index& index, const std::vector<Uv>& uv)
 {
   internal::check_uv_input(index, uv, "count_border_overlaps");
-  std::vector<internal::Overlap_box> boxes;
+  std::vector<int> border;
+  std::vector<internal::Box2> boxes;
   for(int e = 0; e < index.number_of_edges(); ++e)
     if(index.edge_faces[e][1] < 0)
-      boxes.push_back(internal::segment_box(uv[index.edges[e][0]], uv[index.edges[e][1]], e));
+    {
+      border.push_back(e);
+      internal::Box2 box = internal::Box2::around(uv[index.edges[e][0]]);
+      box.extend(uv[index.edges[e][1]]);
+      boxes.push_back(box);
+    }
 
   std::vector<std::pair<int, int>> pairs;
-  // Closed boxes: an axis-parallel edge has a flat box, which must still meet its neighbours.
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
-                                [&](const internal::Overlap_box& a, const internal::Overlap_box& b) {
-                                  if(internal::border_edges_meet(index, uv, a.info(), b.info()))
-                                    pairs.emplace_back(a.info(), b.info());
-                                });
+  internal::Box_tree(boxes).for_each_meeting_pair([&](int i, int j) {
+    if(internal::border_edges_meet(index, uv, border[i], border[j]))
+      pairs.emplace_back(border[i], border[j]);
+    return true;
+  });
 
   Border_overlaps result;
   result.pairs = internal::normalized_pairs(std::move(pairs));

@@ -25,14 +25,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <queue>
 #include <utility>
 #include <string>
 #include <vector>
 
 namespace ICM {
-
-using Uv = std::array<double, 2>;
 
 /// The face farthest (in face hops) from the border, or face 0 on a closed mesh: unfolding
 /// from the middle keeps the face tree shallow.
@@ -40,24 +37,24 @@ inline int central_face(const internal::Mesh_index& index)
 {
   const int nf = index.number_of_faces();
   std::vector<int> depth(nf, -1);
-  std::queue<int> queue;
+  std::vector<int> queue; // breadth first: each face enters once, in order of depth
+  queue.reserve(nf);
   for(int e = 0; e < index.number_of_edges(); ++e)
     if(index.edge_faces[e][1] < 0 && depth[index.edge_faces[e][0]] < 0)
     {
       depth[index.edge_faces[e][0]] = 0;
-      queue.push(index.edge_faces[e][0]);
+      queue.push_back(index.edge_faces[e][0]);
     }
   int last = 0;
-  while(!queue.empty())
+  for(std::size_t next = 0; next < queue.size(); ++next)
   {
-    last = queue.front();
-    queue.pop();
+    last = queue[next];
     for(int e : index.face_edges[last])
       for(int g : index.edge_faces[e])
         if(g >= 0 && depth[g] < 0)
         {
           depth[g] = depth[last] + 1;
-          queue.push(g);
+          queue.push_back(g);
         }
   }
   return last;
@@ -151,8 +148,10 @@ std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corner
     placed[p] = 1;
   }
   // Candidates: (estimated error of the third point, (face, corner of that point)).
+  // A binary heap with the least estimate on top.
   using Candidate = std::pair<double, std::pair<int, int>>;
-  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
+  std::vector<Candidate> queue;
+  const auto later = [](const Candidate& a, const Candidate& b) { return a > b; };
   auto offer_faces_around = [&](int p) {
     for(int i = around.first[p]; i < around.first[p + 1]; ++i)
     {
@@ -164,7 +163,8 @@ std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corner
         if(placed[w[c]] || !placed[a] || !placed[b])
           continue;
         const double l_ab = lengths[face_edges[f][c]], l_ac = lengths[face_edges[f][(c + 2) % 3]];
-        queue.push({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {f, c}});
+        queue.push_back({error[a] + (error[a] + error[b]) * l_ac / l_ab + eps * l_ac, {f, c}});
+        std::push_heap(queue.begin(), queue.end(), later);
       }
     }
   };
@@ -172,8 +172,9 @@ std::vector<Unfolding_step> unfold(const std::vector<std::array<int, 3>>& corner
     offer_faces_around(p);
   while(!queue.empty())
   {
-    const auto [estimate, where] = queue.top();
-    queue.pop();
+    std::pop_heap(queue.begin(), queue.end(), later);
+    const auto [estimate, where] = queue.back();
+    queue.pop_back();
     const auto [f, c] = where;
     const int third = corners[f][c];
     if(placed[third])
@@ -321,18 +322,12 @@ struct Layout_check
   double max_relative_length_error = 0;
 };
 
-/// Twice the signed area of UV triangle (a, b, c).
-inline double twice_signed_area(const Uv& a, const Uv& b, const Uv& c)
-{
-  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /// Faces of `index` whose UV triangle does not have positive area.
 inline int count_flipped_faces(const internal::Mesh_index& index, const std::vector<Uv>& uv)
 {
   int flipped = 0;
   for(const auto& f : index.faces)
-    flipped += !(twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]) > 0);
+    flipped += !(internal::twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]) > 0);
   return flipped;
 }
 

@@ -20,7 +20,7 @@ inline double smallest_area_at(const std::vector<std::array<Uv, 2>>& sides, cons
 {
   double m = HUGE_VAL;
   for(const auto& s : sides)
-    m = std::min(m, twice_signed_area(s[0], s[1], p));
+    m = std::min(m, internal::twice_signed_area(s[0], s[1], p));
   return m;
 }
 
@@ -49,7 +49,7 @@ inline double max_min_area_point(const std::vector<std::array<Uv, 2>>& sides, Uv
     const Uv &a = sides[x][0], &b = sides[x][1];
     return Uv{-(b[1] - a[1]), b[0] - a[0]};
   };
-  auto constant = [&](std::size_t x) { return twice_signed_area(sides[x][0], sides[x][1], Uv{0, 0}); };
+  auto constant = [&](std::size_t x) { return internal::twice_signed_area(sides[x][0], sides[x][1], Uv{0, 0}); };
   double best_value = -HUGE_VAL;
   auto consider = [&](const Uv& p) {
     const double value = smallest_area_at(sides, p);
@@ -121,13 +121,12 @@ struct Face_conformal_distortion
   static Face_conformal_distortion of(const std::array<double, 3>& pv, const std::array<double, 3>& pa,
                                       const std::array<double, 3>& pb, const Uv& a, const Uv& b)
   {
-    namespace d = internal::distortion;
     // The 3D face in a frame of its plane: P = [[|e1|, e2.x], [0, e2.y]], x along e1 = pa - pv.
-    const d::Point3 e1 = d::difference(pa, pv), e2 = d::difference(pb, pv);
-    const double l1 = std::sqrt(d::dot(e1, e1)), twice_area = d::cross_norm(e1, e2);
+    const internal::Point3 e1 = internal::difference(pa, pv), e2 = internal::difference(pb, pv);
+    const double l1 = std::sqrt(internal::dot(e1, e1)), twice_area = internal::cross_norm(e1, e2);
     if(!(l1 > 0) || !(twice_area > 0))
       return {};
-    const double e2x = d::dot(e1, e2) / l1, e2y = twice_area / l1;
+    const double e2x = internal::dot(e1, e2) / l1, e2y = twice_area / l1;
     // M = P^{-1}; J = [a - p, b - p] M = C - p m^T with C = [a, b] M and m = M^T (1, 1).
     const double m00 = 1 / l1, m01 = -e2x / (l1 * e2y), m11 = 1 / e2y;
     const Uv m{m00, m01 + m11};
@@ -137,7 +136,7 @@ struct Face_conformal_distortion
     f.mm = m[0] * m[0] + m[1] * m[1];
     f.cm = {c00 * m[0] + c01 * m[1], c10 * m[0] + c11 * m[1]};
     f.cc = c00 * c00 + c01 * c01 + c10 * c10 + c11 * c11;
-    // det J = twice_signed_area(p, a, b) / det P, and that area is a x b + p x (a - b).
+    // det J = internal::twice_signed_area(p, a, b) / det P, and that area is a x b + p x (a - b).
     f.g = {(a[1] - b[1]) / twice_area, -(a[0] - b[0]) / twice_area};
     f.c = (a[0] * b[1] - a[1] * b[0]) / twice_area;
     f.valid = true;
@@ -289,7 +288,7 @@ inline int unflip_by_moving_vertices(const internal::Mesh_index& index, std::vec
     for(int f = 0; f < index.number_of_faces(); ++f)
     {
       const auto& face = index.faces[f];
-      if(twice_signed_area(uv[face[0]], uv[face[1]], uv[face[2]]) > 0)
+      if(internal::twice_signed_area(uv[face[0]], uv[face[1]], uv[face[2]]) > 0)
         continue;
       // The corner whose faces can be made most positive (the largest mu), moved from the
       // point that does so to its star's most conformal position.

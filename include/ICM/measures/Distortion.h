@@ -28,9 +28,10 @@
 #ifndef ICM_MEASURES_DISTORTION_H
 #define ICM_MEASURES_DISTORTION_H
 
+#include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Unit_frame.h>
+#include <ICM/internal/Vector_geometry.h>
 
-#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/number_utils.h>
 
@@ -71,9 +72,6 @@ struct Distortion_measures
 namespace internal {
 namespace distortion {
 
-using Point3 = std::array<double, 3>;
-using Point2 = std::array<double, 2>;
-
 /// Relative size (to the mean 3D face area) under which an area counts as zero.
 constexpr double degenerate_area_factor = 1e-14;
 
@@ -94,48 +92,12 @@ private:
   double sum_ = 0, compensation_ = 0;
 };
 
-inline Point3 difference(const Point3& a, const Point3& b)
-{
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-inline Point2 difference(const Point2& a, const Point2& b)
-{
-  return {a[0] - b[0], a[1] - b[1]};
-}
-
-inline double dot(const Point3& a, const Point3& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-inline double dot(const Point2& a, const Point2& b)
-{
-  return a[0] * b[0] + a[1] * b[1];
-}
-
-inline double cross_norm(const Point3& a, const Point3& b)
-{
-  return std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
-}
-inline double cross(const Point2& a, const Point2& b)
-{
-  return a[0] * b[1] - a[1] * b[0];
-}
-
-inline double triangle_area(const Point3& p0, const Point3& p1, const Point3& p2)
-{
-  return 0.5 * cross_norm(difference(p1, p0), difference(p2, p0));
-}
-inline double signed_triangle_area(const Point2& q0, const Point2& q1, const Point2& q2)
-{
-  return 0.5 * cross(difference(q1, q0), difference(q2, q0));
-}
-
 /// Angle between two vectors by atan2(|a x b|, a.b): accurate near 0 and pi, unlike acos.
 inline double angle_between(const Point3& a, const Point3& b)
 {
   return std::atan2(cross_norm(a, b), dot(a, b));
 }
-inline double angle_between(const Point2& a, const Point2& b)
+inline double angle_between(const Uv& a, const Uv& b)
 {
   return std::atan2(std::abs(cross(a, b)), dot(a, b));
 }
@@ -155,7 +117,7 @@ struct Uv_normalisation
   double total_3d_area = 0;
   double degenerate_area = 0; ///< areas at or below this count as zero
 
-  Point2 apply_to_vector(const Point2& d) const { return {scale * d[0], scale * mirror * d[1]}; }
+  Uv apply_to_vector(const Uv& d) const { return {scale * d[0], scale * mirror * d[1]}; }
   double apply_to_area(double signed_area) const { return scale * scale * mirror * signed_area; }
 };
 
@@ -179,7 +141,7 @@ std::vector<std::array<double, N>> to_unit_size(const std::vector<std::array<dou
   return out;
 }
 
-inline Uv_normalisation uv_normalisation(const std::vector<Point3>& xyz, const std::vector<Point2>& uv)
+inline Uv_normalisation uv_normalisation(const std::vector<Point3>& xyz, const std::vector<Uv>& uv)
 {
   Compensated_sum area_3d, signed_area_uv, abs_area_uv;
   for(std::size_t c = 0; c < xyz.size(); c += 3)
@@ -187,7 +149,7 @@ inline Uv_normalisation uv_normalisation(const std::vector<Point3>& xyz, const s
     require_finite(xyz[c].data(), 9, "3D");
     require_finite(uv[c].data(), 6, "UV");
     area_3d.add(triangle_area(xyz[c], xyz[c + 1], xyz[c + 2]));
-    const double s = signed_triangle_area(uv[c], uv[c + 1], uv[c + 2]);
+    const double s = 0.5 * internal::twice_signed_area(uv[c], uv[c + 1], uv[c + 2]);
     signed_area_uv.add(s);
     abs_area_uv.add(std::abs(s));
   }
@@ -216,8 +178,8 @@ struct Face_jacobian
 
 /// The frame: origin p0, x axis along p0p1, y axis in the face plane so that p2 has y > 0;
 /// it is an isometry of the 3D triangle, oriented by the corner order.
-inline Face_jacobian face_jacobian(const Point3& p0, const Point3& p1, const Point3& p2, const Point2& du1,
-                                   const Point2& du2, double signed_uv_area)
+inline Face_jacobian face_jacobian(const Point3& p0, const Point3& p1, const Point3& p2, const Uv& du1, const Uv& du2,
+                                   double signed_uv_area)
 {
   const Point3 e1 = difference(p1, p0), e2 = difference(p2, p0);
   const double length1 = std::sqrt(dot(e1, e1));
@@ -225,8 +187,8 @@ inline Face_jacobian face_jacobian(const Point3& p0, const Point3& p1, const Poi
   const double x2 = dot(e1, e2) / length1;
   const double y2 = twice_area / length1;
   // J * [length1 x2; 0 y2] = [du1 du2]: solve the upper triangular system column by column.
-  const Point2 column1 = {du1[0] / length1, du1[1] / length1};
-  const Point2 column2 = {(du2[0] - x2 * column1[0]) / y2, (du2[1] - x2 * column1[1]) / y2};
+  const Uv column1 = {du1[0] / length1, du1[1] / length1};
+  const Uv column2 = {(du2[0] - x2 * column1[0]) / y2, (du2[1] - x2 * column1[1]) / y2};
   Face_jacobian j;
   j.a = column1[0];
   j.b = column2[0];
@@ -335,7 +297,7 @@ struct Has_z_member<T, std::void_t<decltype(std::declval<const T&>().z())>> : st
 
 /// UV value: anything with .x()/.y() (CGAL Point_2, Vector_2) or [0]/[1] (arrays, Eigen).
 template <class P>
-Point2 to_point2(const P& p)
+Uv to_point2(const P& p)
 {
   if constexpr(Has_xy_members<P>::value)
     return {CGAL::to_double(p.x()), CGAL::to_double(p.y())};
@@ -394,19 +356,20 @@ inline Distortion_measures measure_unit_size(const std::vector<std::array<double
   d::Distortion_accumulator accumulator;
   for(std::size_t c = 0; c < xyz.size(); c += 3)
   {
-    const d::Point3 &p0 = xyz[c], &p1 = xyz[c + 1], &p2 = xyz[c + 2];
-    if(d::triangle_area(p0, p1, p2) <= normalisation.degenerate_area)
+    const internal::Point3 &p0 = xyz[c], &p1 = xyz[c + 1], &p2 = xyz[c + 2];
+    if(internal::triangle_area(p0, p1, p2) <= normalisation.degenerate_area)
     {
       accumulator.add_degenerate_3d_face();
       continue;
     }
     // Work on differences only: the layout's translation never enters, nor its rounding.
-    const d::Point2 du1 = normalisation.apply_to_vector(d::difference(uv[c + 1], uv[c]));
-    const d::Point2 du2 = normalisation.apply_to_vector(d::difference(uv[c + 2], uv[c]));
-    const double signed_area = normalisation.apply_to_area(d::signed_triangle_area(uv[c], uv[c + 1], uv[c + 2]));
+    const Uv du1 = normalisation.apply_to_vector(internal::difference(uv[c + 1], uv[c]));
+    const Uv du2 = normalisation.apply_to_vector(internal::difference(uv[c + 2], uv[c]));
+    const double signed_area =
+      normalisation.apply_to_area(0.5 * internal::twice_signed_area(uv[c], uv[c + 1], uv[c + 2]));
     const d::Face_jacobian j = d::face_jacobian(p0, p1, p2, du1, du2, signed_area);
 
-    const d::Point2 origin = {0, 0};
+    const Uv origin = {0, 0};
     accumulator.add_conformal_terms(j, d::corner_angles(p0, p1, p2), d::corner_angles(origin, du1, du2));
     if(std::abs(signed_area) <= normalisation.degenerate_area)
       accumulator.add_degenerate_uv_face();
@@ -461,20 +424,20 @@ template <class TriangleMesh, class VertexPointMap, class CornerUv>
 Distortion_measures measure_faces(const TriangleMesh& mesh, VertexPointMap vpm, CornerUv uv_of_corner)
 {
   std::vector<Point3> xyz;
-  std::vector<Point2> uv;
+  std::vector<Uv> uv;
   const std::size_t face_count = static_cast<std::size_t>(std::distance(faces(mesh).begin(), faces(mesh).end()));
   xyz.reserve(3 * face_count);
   uv.reserve(3 * face_count);
   for(auto f : faces(mesh))
   {
     std::size_t corners = 0;
-    for(auto h : CGAL::halfedges_around_face(halfedge(f, mesh), mesh))
-    {
+    internal::for_each_halfedge_of_face(f, mesh, [&](auto h) {
       if(++corners > 3)
-        break;
+        return false;
       xyz.push_back(to_point3(get(vpm, target(h, mesh))));
       uv.push_back(to_point2(uv_of_corner(h)));
-    }
+      return true;
+    });
     if(corners != 3)
       throw std::invalid_argument("ICM::measure_distortion: the mesh has a face with " +
                                   std::string(corners > 3 ? "more than 3" : std::to_string(corners)) +

@@ -108,6 +108,11 @@ inline double seam_length_error(const Cut_mesh& cut, const std::vector<Uv>& uv)
   return worst;
 }
 
+/// A seam vertex's two motions are one (it is no cone) when they agree to this: in angle, and
+/// in where they take the twin relative to its distance from the origin. A cone's motions
+/// differ by its angle defect, orders of magnitude above the layout's rounding.
+constexpr double seam_twin_tolerance = 1e-6;
+
 /// The two wedges of every flat interior vertex that a seam passes through, each with the
 /// rigid motion that takes its twin's UVs into its frame (`Seam_twin`). The motion is read
 /// from each of the vertex's two seam edges; where they disagree the vertex is a cone on the
@@ -168,11 +173,18 @@ inline std::vector<Seam_twin> seam_twins(const Mesh_index& index, const Cut_mesh
     const Seam_twin& b = found[w][1];
     const Uv p = a.to_this(uv[a.wedge]), q = b.to_this(uv[b.wedge]);
     const double turn = std::abs(std::atan2(a.s * b.c - a.c * b.s, a.c * b.c + a.s * b.s));
-    if(turn < 1e-6 && std::hypot(p[0] - q[0], p[1] - q[1]) <= 1e-6 * std::hypot(p[0], p[1]) + 1e-300)
+    if(turn < seam_twin_tolerance &&
+       std::hypot(p[0] - q[0], p[1] - q[1]) <= seam_twin_tolerance * std::hypot(p[0], p[1]) + 1e-300)
       twins[w] = a;
   }
   return twins;
 }
+
+/// An energy's optimizer stops at its own tolerance on the energy, where the metric is flat
+/// only to about the run's Newton tolerance; these few Newton steps at a tolerance a thousand
+/// times tighter make it flat with a margin before the layout.
+constexpr double finishing_newton_tolerance_factor = 1e-3;
+constexpr int finishing_newton_steps = 3;
 
 /// Step 5, the entropy: Algorithm 1 for a prescribed border (or the circle domain's fixed
 /// point), the curvature diffusion when asked, else Newton on the Dirichlet problem.
@@ -233,8 +245,8 @@ Status energy_optimum(const Chart_problem& problem, const Chart_options& options
     return Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM,
                            std::string(energy_name<Energy>()) + " energy: " + optimizer.message);
   Newton_options finish = options.newton;
-  finish.tolerance = 1e-3 * options.newton.tolerance;
-  finish.max_iterations = 3;
+  finish.tolerance = finishing_newton_tolerance_factor * options.newton.tolerance;
+  finish.max_iterations = finishing_newton_steps;
   const Newton_report newton = solver.solve(problem.target, u, finish);
   report.newton_iterations += optimizer.newton_iterations + newton.iterations;
   const bool flat = !newton.residual_history.empty() && newton.residual_history.back() <= options.newton.tolerance;

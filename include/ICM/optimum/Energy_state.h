@@ -108,8 +108,6 @@ inline double angle_derivative(const std::array<double, 3>& weight, int c, int d
   return weight[3 - c - d]; // the corner that is neither c nor d: opposite edge cd
 }
 
-using Point2 = std::array<double, 2>;
-
 /// Whether a metric keeps some edges of its own triangulation fixed (`m.fixed_edges()`, the
 /// seams): a development of it is cut along them.
 template <class Metric, class = void>
@@ -129,19 +127,7 @@ std::vector<char> development_seams(const Metric& metric, int edges)
   return std::vector<char>(edges, 0);
 }
 
-inline double cross(const Point2& a, const Point2& b)
-{
-  return a[0] * b[1] - a[1] * b[0];
-}
-inline double dot(const Point2& a, const Point2& b)
-{
-  return a[0] * b[0] + a[1] * b[1];
-}
-inline Point2 minus(const Point2& a, const Point2& b)
-{
-  return {a[0] - b[0], a[1] - b[1]};
-}
-inline Point2 rotated(const Point2& d, double angle)
+inline Uv rotated(const Uv& d, double angle)
 {
   const double c = std::cos(angle), s = std::sin(angle);
   return {c * d[0] - s * d[1], s * d[0] + c * d[1]};
@@ -430,7 +416,7 @@ private:
     for(int f = 0; f < nf; ++f)
     {
       const std::array<int, 3>& v = mesh_wedges_[f];
-      area_[f] = 0.5 * internal::cross(internal::minus(z_[v[1]], z_[v[0]]), internal::minus(z_[v[2]], z_[v[0]]));
+      area_[f] = 0.5 * internal::twice_signed_area(z_[v[0]], z_[v[1]], z_[v[2]]);
       total += area_[f];
     }
     area_scale_ = mesh_total_area_ / total;
@@ -445,8 +431,8 @@ private:
       const std::array<int, 3>& v = mesh_wedges_[f];
       for(int c = 0; c < 3; ++c)
       {
-        const internal::Point2 a = internal::minus(z_[v[(c + 1) % 3]], z_[v[c]]);
-        const internal::Point2 b = internal::minus(z_[v[(c + 2) % 3]], z_[v[c]]);
+        const Uv a = internal::difference(z_[v[(c + 1) % 3]], z_[v[c]]);
+        const Uv b = internal::difference(z_[v[(c + 2) % 3]], z_[v[c]]);
         developed_angle_[f][c] = std::atan2(internal::cross(a, b), internal::dot(a, b));
       }
     }
@@ -460,7 +446,7 @@ private:
   void chain_through_development(const Energy_gradient& partials, Eigen::VectorXd& gradient) const
   {
     const internal::Mesh_index& t = triangulation();
-    std::vector<internal::Point2>& zbar = z_partial_;
+    std::vector<Uv>& zbar = z_partial_;
     zbar.assign(z_.size(), {0.0, 0.0});
     auto add = [&zbar](int v, double x, double y) {
       zbar[v][0] += x;
@@ -473,7 +459,7 @@ private:
       const double q = 0.5 * raw_area_partial_[f];
       for(int c = 0; c < 3; ++c)
       {
-        const internal::Point2 &zj = z_[v[(c + 1) % 3]], &zk = z_[v[(c + 2) % 3]];
+        const Uv &zj = z_[v[(c + 1) % 3]], &zk = z_[v[(c + 2) % 3]];
         add(v[c], q * (zj[1] - zk[1]), q * (zk[0] - zj[0]));
       }
       // theta = angle from a = z_j - z_i to b = z_k - z_i: d theta / d a = (a_y, -a_x) / |a|^2,
@@ -484,9 +470,9 @@ private:
         if(p == 0.0)
           continue;
         const int i = v[c], j = v[(c + 1) % 3], k = v[(c + 2) % 3];
-        const internal::Point2 a = internal::minus(z_[j], z_[i]), b = internal::minus(z_[k], z_[i]);
+        const Uv a = internal::difference(z_[j], z_[i]), b = internal::difference(z_[k], z_[i]);
         const double aa = internal::dot(a, a), bb = internal::dot(b, b);
-        const internal::Point2 da = {p * a[1] / aa, -p * a[0] / aa}, db = {-p * b[1] / bb, p * b[0] / bb};
+        const Uv da = {p * a[1] / aa, -p * a[0] / aa}, db = {-p * b[1] / bb, p * b[0] / bb};
         add(j, da[0], da[1]);
         add(k, db[0], db[1]);
         add(i, -da[0] - db[0], -da[1] - db[1]);
@@ -504,16 +490,16 @@ private:
       const std::array<int, 3>& v = wedges_[f];
       const double theta = geometry_[f].angles.angle[a];
       const int ac = t.face_edges[f][b];
-      const internal::Point2 Z = zbar[v[c]];
-      const internal::Point2 d = internal::minus(z_[v[b]], z_[v[a]]);
+      const Uv Z = zbar[v[c]];
+      const Uv d = internal::difference(z_[v[b]], z_[v[a]]);
       const double norm = std::hypot(d[0], d[1]);
-      const internal::Point2 n = {d[0] / norm, d[1] / norm};
-      const internal::Point2 w = internal::rotated(n, theta);
+      const Uv n = {d[0] / norm, d[1] / norm};
+      const Uv w = internal::rotated(n, theta);
       length_bar[ac] += internal::dot(Z, w);
       theta_bar[f][a] += lengths_[ac] * internal::dot(Z, {-w[1], w[0]});
-      const internal::Point2 n_bar = internal::rotated({lengths_[ac] * Z[0], lengths_[ac] * Z[1]}, -theta);
+      const Uv n_bar = internal::rotated({lengths_[ac] * Z[0], lengths_[ac] * Z[1]}, -theta);
       const double along = internal::dot(n_bar, n);
-      const internal::Point2 d_bar = {(n_bar[0] - along * n[0]) / norm, (n_bar[1] - along * n[1]) / norm};
+      const Uv d_bar = {(n_bar[0] - along * n[0]) / norm, (n_bar[1] - along * n[1]) / norm};
       add(v[a], Z[0] - d_bar[0], Z[1] - d_bar[1]);
       add(v[b], d_bar[0], d_bar[1]);
     }
@@ -546,7 +532,7 @@ private:
   std::vector<double> area_;                 // raw, per mesh face
   std::vector<std::array<double, 3>> angle_; // per mesh face corner (metric faces only)
   double area_scale_ = 1;
-  std::vector<internal::Point2> z_;                            // developed wedges
+  std::vector<Uv> z_;                                          // developed wedges
   mutable std::vector<std::array<double, 3>> developed_angle_; // per mesh face corner, when asked
   mutable bool developed_angles_current_ = false;
   // The cut of the development: the seams, each vertex's seam degree, the wedges of the mesh's
@@ -561,7 +547,7 @@ private:
   int root_edge_ = -1;
   // Scratch of gradient_u.
   mutable std::vector<double> raw_area_partial_;
-  mutable std::vector<internal::Point2> z_partial_;
+  mutable std::vector<Uv> z_partial_;
   mutable std::vector<std::array<double, 3>> angle_partial_;
   mutable std::vector<double> length_partial_;
 };
