@@ -21,7 +21,7 @@
 #include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/optimum/Optimal_metric.h>
 
-#include <CGAL/MP_Float.h>
+#include <gmpxx.h>
 
 #include <algorithm>
 #include <array>
@@ -397,19 +397,18 @@ TEST(BorderOverlaps, RejectsBadInput)
 
 namespace {
 
-/// The sign of (q - p) x (r - p) in CGAL's exact MP_Float, where products of doubles are exact.
-int mp_float_orientation(const Uv& p, const Uv& q, const Uv& r)
+/// The sign of (q - p) x (r - p) in GMP's rationals, which hold every double exactly.
+int exact_orientation(const Uv& p, const Uv& q, const Uv& r)
 {
-  using Exact = CGAL::MP_Float;
-  const Exact d = (Exact(q[0]) - Exact(p[0])) * (Exact(r[1]) - Exact(p[1])) -
-                  (Exact(q[1]) - Exact(p[1])) * (Exact(r[0]) - Exact(p[0]));
-  return static_cast<int>(CGAL::sign(d));
+  const mpq_class d = (mpq_class(q[0]) - mpq_class(p[0])) * (mpq_class(r[1]) - mpq_class(p[1])) -
+                      (mpq_class(q[1]) - mpq_class(p[1])) * (mpq_class(r[0]) - mpq_class(p[0]));
+  return sgn(d);
 }
 
 } // namespace
 
 // Points on a line and one ulp off it, at unit size and at 1e-200 and 1e+200: the filter
-// cannot decide these, the expansion arithmetic must. Every answer against MP_Float.
+// cannot decide these, the expansion arithmetic must. Every answer against GMP's rationals.
 TEST(ExactPredicates, OrientationAgreesWithExactArithmeticOnNearlyCollinearPoints)
 {
   std::mt19937 random(11);
@@ -426,7 +425,7 @@ TEST(ExactPredicates, OrientationAgreesWithExactArithmeticOnNearlyCollinearPoint
         r[1] = std::nextafter(r[1], HUGE_VAL);
       else if(trial % 3 == 2)
         r[0] = std::nextafter(r[0], -HUGE_VAL);
-      const int expected = mp_float_orientation(p, q, r);
+      const int expected = exact_orientation(p, q, r);
       ASSERT_EQ(ICM::internal::orientation(p, q, r), expected) << "scale " << scale << " trial " << trial;
       ASSERT_EQ(ICM::internal::orientation(q, p, r), -expected);
       const double rounded = ICM::internal::twice_signed_area(p, q, r);
@@ -444,7 +443,7 @@ TEST(ExactPredicates, OrientationOfRandomAndExtremePoints)
   for(int trial = 0; trial < 20000; ++trial)
   {
     const Uv p = {unit(random), unit(random)}, q = {unit(random), unit(random)}, r = {unit(random), unit(random)};
-    ASSERT_EQ(ICM::internal::orientation(p, q, r), mp_float_orientation(p, q, r));
+    ASSERT_EQ(ICM::internal::orientation(p, q, r), exact_orientation(p, q, r));
   }
   // Coordinates whose differences overflow a double, and points spread over 600 decades.
   const double big = 1.7e308;
