@@ -84,7 +84,9 @@ struct Arguments
   std::string energy = ICM::Curvature_entropy::name;
   std::string boundary = ICM::Free_border().name();
   int max_cones = -1;                        // -1: automatic
-  bool cones_asked = false;                  // --cones auto or N > 0 given
+  double cone_target = 0;                    // --cone-target: 0 unless given
+  std::string cone_placement = "linearized";
+  bool cones_asked = false;                  // --cones auto or N > 0, or --cone-target given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
 };
 
@@ -92,7 +94,8 @@ const char* const usage =
   "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
-  "         [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt] [--keep-overlaps]\n"
+  "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
+  "         [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "       icm_param --help | --version\n";
 
 std::string version_text()
@@ -263,9 +266,20 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                 "arc-length circle or square), circle-domain (every border loop a circle, no cut; genus 0)")
     ->check(CLI::IsMember(boundary_names()))
     ->type_name("NAME");
-  app.add_option("--cones", cones_text, "automatic interior cones: 'auto' (default) or at most N, 0 for none")
+  app.add_option("--cones", cones_text,
+                 "automatic interior cones: 'auto' (default: until the linearized max |u - u0| <= 0.6, at most 32), "
+                 "exactly N (also on a disk whose free border is not extreme), 0 for none")
     ->check(cone_count_validator())
     ->type_name("auto|N");
+  app
+    .add_option("--cone-target", args.cone_target,
+                "add cones until the linearized optimum's max |u - u0| is at most T (at most --cones N, default 32)")
+    ->check(CLI::PositiveNumber)
+    ->type_name("T");
+  app.add_option("--cone-placement", args.cone_placement,
+                 "greedy cones on the linearized optimum (default) or on the exact one, from Algorithm 3's minima")
+    ->check(CLI::IsMember({"linearized", "exact"}))
+    ->type_name("NAME");
   app.add_option("--cone", cone_texts, "a cone of DEGREES at the input's VERTEX (repeatable)")
     ->check(cone_validator())
     ->type_name("VERTEX:DEGREES");
@@ -307,7 +321,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                        fail);
   if(!cones_text.empty() && cones_text != "auto")
     args.max_cones = std::atoi(cones_text.c_str());
-  args.cones_asked = !cones_text.empty() && args.max_cones != 0;
+  args.cones_asked = (!cones_text.empty() && args.max_cones != 0) || args.cone_target > 0;
   for(const std::string& text : cone_texts)
   {
     std::pair<int, double> cone;
@@ -661,7 +675,14 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
     options.automatic_cones = args.max_cones > 0;
     options.cones.max_cones = args.max_cones;
     options.initial_cones = std::min(options.initial_cones, args.max_cones);
+    // A count is exact: no stop on distortion, and a disk gets its cones too.
+    options.cones.max_log_scale = 0;
+    options.border_max_log_scale = 0;
   }
+  if(args.cone_target > 0)
+    options.cones.max_log_scale = args.cone_target;
+  if(args.cone_placement == "exact")
+    options.cones.placement = ICM::Cone_placement::Exact_optimum;
   Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
   options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
 

@@ -167,15 +167,30 @@ inline Status check_options(const Curvature_space_options& options, const std::s
     .status();
 }
 
+/// How automatic cones are placed (cones/Singular_vertices.h).
+enum class Cone_placement
+{
+  /// Greedy on the linearized optimum, one factorization for all rounds (default: of the
+  /// two, the lower area distortion at every count measured, in a fraction of the time;
+  /// doc/benchmarks.md, Cones).
+  Linearized,
+  /// Greedy on the exact entropy optimum, one Newton run per round, from Algorithm 3's
+  /// strongest minima on a closed surface.
+  Exact_optimum
+};
+
 /// The greedy cone placement (`greedy_cones`).
 struct Cone_options
 {
   /// Stop adding cones once every non-singular vertex has |u - u0| below this: the area
   /// of its neighbourhood changes by less than exp(2 * this), within e^1.2 ~ 3.3 by default
-  /// (the trade of distortion against cones: doc/benchmarks.md, Every surface).
+  /// (the trade of distortion against cones: doc/benchmarks.md, Every surface). 0: place
+  /// exactly `max_cones`.
   double max_log_scale = 0.6;
-  /// At most this many interior cones (a user limit); 0 means none.
+  /// At most this many interior cones (a user limit); 0 means none. A closed genus-0 surface
+  /// gets at least two.
   int max_cones = 32;
+  Cone_placement placement = Cone_placement::Linearized;
   /// Unset: the run's `Surface_parameterization_options::newton` (called directly, the
   /// defaults).
   std::optional<Newton_options> newton;
@@ -184,7 +199,8 @@ struct Cone_options
 inline Status check_options(const Cone_options& options, const std::string& prefix = "cones.")
 {
   return internal::Option_checks(prefix)
-    .real("max_log_scale", options.max_log_scale, 0, false)
+    .real("max_log_scale", options.max_log_scale, 0, true)
+    .one_of("placement", options.placement, 2)
     .at_least("max_cones", options.max_cones, 0)
     .nested(check_options(options.newton, prefix + "newton."))
     .status();
@@ -275,8 +291,10 @@ struct Surface_parameterization_options : Chart_options
   /// needs user cones).
   bool automatic_cones = true;
   Cone_options cones;
-  /// Cones a closed genus-0 surface starts from (Algorithm 3's strongest minima) before the
-  /// greedy placement adds more; 8 is BFF's default count.
+  /// With `Cone_placement::Exact_optimum`: the cones a closed genus-0 surface starts from
+  /// (Algorithm 3's strongest minima; its first optima with two cones need conformal factors
+  /// no metric reaches) before the greedy placement adds more; 8 is BFF's default count. The
+  /// linearized placement starts from the user's cones alone.
   int initial_cones = 8;
   /// A surface with a border gets automatic interior cones only when its free-boundary
   /// optimum changes some area by more than exp(2 * this) ~ 55; an ordinary disk keeps its

@@ -1,21 +1,24 @@
 // Step 4: the singular (cone) vertex set S (paper Sec. III-C, Algorithm 3), on the surface as
 // given (before any cut).
 //
-// Two ways to choose interior cones:
+// Three ways to choose interior cones:
 // - `curvature_minima` is Algorithm 3: spread the total curvature 2 pi chi uniformly over the
 //   interior, solve u = K^{-1}(k), and rank the local minima of u - u0 (where the surface must
 //   shrink most to become uniformly curved) deepest first;
 // - `greedy_cones` (Ben-Chen, Gotsman, Bunin 2008; Springborn, Schroeder, Pinkall 2008) adds
-//   cones where the current entropy optimum's |u - u0| is largest, and re-solves
-//   warm-started (a few far-apart cones per round once there are several). Each cone removes the worst area distortion left, so the area figure falls
-//   fastest with it (doc/benchmarks.md, Every surface); it is the default.
-// Both run on the circle packing metric, whose every u is valid: the first optima of a closed
-// surface with two cones need conformal factors of e^30 that no exact metric can reach.
+//   cones where the current entropy optimum's |u - u0| is largest: each cone removes the
+//   worst area distortion left. By default on the optimum linearized at u0, one cone per
+//   round on one factorization (cones/Linearized_cones.h); with
+//   `Cone_placement::Exact_optimum` on the exact optimum, re-solved by Newton warm-started
+//   each round (a few far-apart cones per round once there are several), from Algorithm 3's
+//   minima: its first optima of a closed surface with two cones need conformal factors of
+//   e^30 that no exact metric can reach.
 
 #ifndef ICM_CONES_SINGULAR_VERTICES_H
 #define ICM_CONES_SINGULAR_VERTICES_H
 
 #include <ICM/Options.h>
+#include <ICM/cones/Linearized_cones.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/metrics/Circle_packing_metric.h>
@@ -86,22 +89,67 @@ struct Cone_selection
   bool ok() const { return message.empty(); }
 };
 
-/// Greedy cone placement on the surface. The singular set starts as the border plus `seeds`;
-/// each round solves the entropy optimum u_S = u0_S, K_N = 0 (warm-started) and makes the
-/// non-singular vertex with the largest |u - u0| a cone, until `max_log_scale` or
-/// `max_cones` is reached. A closed genus-0 surface needs two seeds (one cone would carry
-/// curvature 4 pi); other surfaces need one when they have no border.
+/// Greedy cone placement on the linearized optimum (cones/Linearized_cones.h): the singular
+/// set starts as the border plus `seeds` (plus, on a closed surface without one, the extreme
+/// of the linearized uniform-curvature metric); each round makes the non-singular vertex with
+/// the largest linearized |u - u0| a cone, until `max_log_scale` (unless 0) or `max_cones`.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
-Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
-                            const Cone_options& options = Cone_options())
+Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const Metric& metric,
+                                       const std::vector<int>& seeds, const Cone_options& options = Cone_options())
 {
   const int nv = index.number_of_vertices();
   Cone_selection selection;
-  if(const Status checked = check_options(options); !checked.ok())
+  std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  for(int v : seeds)
+    if(!is_singular[v])
+    {
+      is_singular[v] = 1;
+      selection.cones.push_back(v);
+    }
+  internal::Linearized_cone_problem<SparseSolver, Metric> problem(index, metric, is_singular);
+  if(!problem.ok())
   {
-    selection.message = checked.message;
+    selection.message = problem.message();
     return selection;
   }
+  const bool closed = index.number_of_boundary_loops() == 0;
+  const int chi = index.euler_characteristic();
+  // One cone of a closed genus-0 surface would carry 4 pi: it needs two, whatever the limit.
+  const int wanted = closed && chi > 0 ? std::max(2, options.max_cones) : options.max_cones;
+  const auto make_cone = [&](int v) {
+    is_singular[v] = 1;
+    selection.cones.push_back(v);
+    problem.add_cone(v);
+  };
+  if(!problem.is_determined() && wanted > 0)
+    make_cone(problem.uniform_curvature_extreme(chi < 0));
+  for(;;)
+  {
+    const Eigen::VectorXd u = problem.solve();
+    int worst = -1;
+    for(int v = 0; v < nv; ++v)
+      if(!is_singular[v] && (worst < 0 || std::abs(u[v]) > std::abs(u[worst])))
+        worst = v;
+    selection.max_log_scale.push_back(worst < 0 ? 0.0 : std::abs(u[worst]));
+    const bool small_enough = options.max_log_scale > 0 && selection.max_log_scale.back() <= options.max_log_scale &&
+                              !(closed && chi > 0 && selection.cones.size() < 2);
+    if(worst < 0 || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
+      return selection;
+    make_cone(worst);
+  }
+}
+
+/// Greedy cone placement on the exact entropy optimum. The singular set starts as the border
+/// plus `seeds`; each round solves the entropy optimum u_S = u0_S, K_N = 0 (warm-started) and
+/// makes the non-singular vertex with the largest |u - u0| a cone, until `max_log_scale` or
+/// `max_cones` is reached. A closed genus-0 surface needs two seeds (one cone would carry
+/// curvature 4 pi); other surfaces need one when they have no border.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
+                                  const Cone_options& options = Cone_options())
+{
+  const int nv = index.number_of_vertices();
+  Cone_selection selection;
   std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
   for(int v : seeds)
     if(!is_singular[v])
@@ -164,6 +212,22 @@ Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& met
       selection.cones.push_back(peaks[i]);
     }
   }
+}
+
+/// Greedy cone placement by `options.placement` (see above).
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
+                            const Cone_options& options = Cone_options())
+{
+  if(const Status checked = check_options(options); !checked.ok())
+  {
+    Cone_selection refused;
+    refused.message = checked.message;
+    return refused;
+  }
+  return options.placement == Cone_placement::Linearized
+           ? linearized_greedy_cones<SparseSolver>(index, metric, seeds, options)
+           : exact_greedy_cones<SparseSolver>(index, metric, seeds, options);
 }
 
 } // namespace ICM

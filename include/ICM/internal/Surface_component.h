@@ -145,11 +145,12 @@ bool border_wants_cones(const Mesh_index& index, const Metric& metric, const Cir
   return !free.converged || depth > options.border_max_log_scale;
 }
 
-/// The cones greedy placement starts from: the user's, then Algorithm 3's strongest minima
-/// as a closed surface needs them. Genus 0 needs two cones (one would carry 4 pi) but starts
-/// from the `initial_cones` strongest minima, which spare the first optimum its most extreme
-/// conformal factors; genus g > 1 starts with 2g - 2 negative cones at the maxima, so that no
-/// single cone carries all of 2 pi chi.
+/// The cones greedy placement starts from: the user's, then, for the exact placement,
+/// Algorithm 3's strongest minima as a closed surface needs them. Genus 0 needs two cones
+/// (one would carry 4 pi) but starts from the `initial_cones` strongest minima, which spare
+/// the first optimum its most extreme conformal factors; genus g > 1 starts with 2g - 2
+/// negative cones at the maxima, so that no single cone carries all of 2 pi chi. The
+/// linearized placement is solvable from any start and finds its first cone itself.
 template <class Solver>
 std::vector<int> cone_seeds(const Mesh_index& index, const Circle_packing_metric& packing,
                             const std::vector<char>& is_singular, const Surface_parameterization_options& options)
@@ -161,6 +162,8 @@ std::vector<int> cone_seeds(const Mesh_index& index, const Circle_packing_metric
   for(int v = 0; v < nv; ++v)
     if(is_singular[v] && !index.is_boundary_vertex[v])
       seeds.push_back(v);
+  if(options.cones.placement == Cone_placement::Linearized)
+    return seeds;
   const int needed = !closed ? 0 : chi > 0 ? std::max(2, options.initial_cones) : chi == 0 ? 1 : -chi;
   if(static_cast<int>(seeds.size()) >= needed)
     return seeds;

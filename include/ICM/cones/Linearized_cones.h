@@ -1,0 +1,200 @@
+// Step 4, the default: greedy cone placement on the linearized problem (Ben-Chen, Gotsman,
+// Bunin 2008; Sawhney and Crane's BFF places its cones the same way).
+//
+// Linearized at the mesh's own metric u0, the curvature is K(u0 + u) ~ K0 + Delta u, so the
+// entropy optimum with cones S (u_S = 0, K_N = 0 elsewhere) is the harmonic problem
+// Delta_NN u_N = -K0_N. It always has a solution, where the exact optimum of a closed
+// surface with few cones needs conformal factors no metric can reach; and every round of the
+// greedy placement is a solve, not a Newton run.
+//
+// The factorization is made once. A new cone c only adds the constraint u_c = 0, so with
+// x = Delta_FF^{-1} b on the vertices F free at the start, u = x + sum_t lambda_t G_t with
+// G_t = Delta_FF^{-1} e_t and the lambdas from the k x k system of the cones' rows of G (the
+// capacitance matrix). Per cone: one solve for its column of G, one for u; memory O(n + k^2).
+//
+// A closed surface without a singular vertex is factorized with one vertex p pinned (the
+// constant vector spans the kernel of Delta). u is then x + sum lambda_t G_t + c, and p's
+// equation, which the pinned system does not hold, is the extra row sum lambda = -sum b.
+
+#ifndef ICM_CONES_LINEARIZED_CONES_H
+#define ICM_CONES_LINEARIZED_CONES_H
+
+#include <ICM/Options.h>
+#include <ICM/curvature/Curvature_map.h>
+#include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/internal/Mesh_index.h>
+#include <ICM/internal/Vector_geometry.h>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ICM {
+namespace internal {
+
+/// The linearized entropy optimum for a growing cone set, on one factorization.
+template <class SparseSolver, class Metric>
+class Linearized_cone_problem
+{
+public:
+  /// `is_fixed`: the border and the cones given before the placement.
+  Linearized_cone_problem(const Mesh_index& index, const Metric& metric, const std::vector<char>& is_fixed)
+    : index_(index), curvature_(index, metric)
+  {
+    const int nv = index.number_of_vertices();
+    std::vector<double> w;
+    if(curvature_.evaluate(metric.u0, k0_, &w) > 0)
+    {
+      message_ = "the mesh's own metric has faces that are not triangles";
+      return;
+    }
+    std::vector<char> is_free(nv);
+    bool any_fixed = false;
+    for(int v = 0; v < nv; ++v)
+    {
+      is_free[v] = !is_fixed[v];
+      any_fixed = any_fixed || is_fixed[v];
+    }
+    pinned_ = !any_fixed && nv > 0;
+    if(pinned_)
+      is_free[0] = 0; // vertex 0 stands for the constant
+    laplacian_.emplace(curvature_.mesh_index(), is_free);
+    laplacian_->assemble(w);
+    if(!laplacian_->factorize())
+    {
+      message_ = "the Laplacian of the mesh's metric could not be factorized";
+      return;
+    }
+    b_.resize(laplacian_->size());
+    for(int i = 0; i < laplacian_->size(); ++i)
+      b_[i] = -k0_[laplacian_->vertex(i)];
+    sum_b_ = -k0_.sum();
+    x_ = laplacian_->solve(b_);
+  }
+
+  const std::string& message() const { return message_; }
+  bool ok() const { return message_.empty(); }
+  /// Whether the cones so far determine u (a closed surface with chi != 0 needs one).
+  bool is_determined() const { return !pinned_ || !cones_.empty(); }
+
+  /// The extreme of the linearized metric of uniform curvature 2 pi chi a_v / A (a_v the
+  /// vertex's share of the 3D area): Algorithm 3's strongest minimum (`maxima`: maximum),
+  /// where a closed surface's first cone goes.
+  int uniform_curvature_extreme(bool maxima) const
+  {
+    const int nv = index_.number_of_vertices();
+    std::vector<double> area(nv, 0.0);
+    double total = 0;
+    for(const auto& f : index_.faces)
+    {
+      const double a = triangle_area(index_.points[f[0]], index_.points[f[1]], index_.points[f[2]]);
+      for(int v : f)
+        area[v] += a / 3;
+      total += a;
+    }
+    Eigen::VectorXd rhs(laplacian_->size());
+    for(int i = 0; i < laplacian_->size(); ++i)
+    {
+      const int v = laplacian_->vertex(i);
+      rhs[i] = 2 * M_PI * index_.euler_characteristic() * area[v] / total - k0_[v];
+    }
+    const Eigen::VectorXd u = laplacian_->solve(rhs);
+    int best = -1;
+    for(int i = 0; i < u.size(); ++i)
+      if(best < 0 || (maxima ? u[i] > u[best] : u[i] < u[best]))
+        best = i;
+    // The pinned vertex has u = 0: it is the extreme when every free u is on the wrong side.
+    if(best < 0 || (maxima ? u[best] < 0 : u[best] > 0))
+      return pinned_ ? 0 : -1;
+    return laplacian_->vertex(best);
+  }
+
+  /// Makes `v` (a free vertex, or the pinned one) a cone.
+  void add_cone(int v)
+  {
+    const int k = static_cast<int>(cones_.size());
+    Eigen::VectorXd column = Eigen::VectorXd::Zero(laplacian_->size());
+    if(laplacian_->free_index(v) >= 0)
+    {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(laplacian_->size());
+      e[laplacian_->free_index(v)] = 1;
+      column = laplacian_->solve(e);
+    }
+    cones_.push_back(v);
+    capacitance_.conservativeResize(k + 1, k + 1);
+    for(int t = 0; t <= k; ++t)
+    {
+      const double g = value_at(column, cones_[t]);
+      capacitance_(t, k) = g;
+      capacitance_(k, t) = g;
+    }
+  }
+
+  /// u - u0 of the linearized optimum with the cones so far, per vertex.
+  Eigen::VectorXd solve() const
+  {
+    const int k = static_cast<int>(cones_.size());
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(k);
+    double constant = 0;
+    if(!pinned_ && k > 0)
+    {
+      Eigen::VectorXd rhs(k);
+      for(int t = 0; t < k; ++t)
+        rhs[t] = -value_at(x_, cones_[t]);
+      lambda = capacitance_.ldlt().solve(rhs);
+    }
+    else if(pinned_)
+    {
+      Eigen::MatrixXd saddle = Eigen::MatrixXd::Zero(k + 1, k + 1);
+      Eigen::VectorXd rhs(k + 1);
+      saddle.topLeftCorner(k, k) = capacitance_;
+      for(int t = 0; t < k; ++t)
+      {
+        saddle(t, k) = 1;
+        saddle(k, t) = 1;
+        rhs[t] = -value_at(x_, cones_[t]);
+      }
+      rhs[k] = -sum_b_;
+      const Eigen::VectorXd solution = saddle.fullPivLu().solve(rhs);
+      lambda = solution.head(k);
+      constant = solution[k];
+    }
+    Eigen::VectorXd rhs = b_;
+    for(int t = 0; t < k; ++t)
+      if(laplacian_->free_index(cones_[t]) >= 0)
+        rhs[laplacian_->free_index(cones_[t])] += lambda[t];
+    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(rhs)) : x_;
+    Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), pinned_ ? constant : 0.0);
+    for(int i = 0; i < laplacian_->size(); ++i)
+      u[laplacian_->vertex(i)] += free_u[i];
+    for(int v : cones_)
+      u[v] = 0; // exactly, not to the solve's rounding
+    return u;
+  }
+
+private:
+  double value_at(const Eigen::VectorXd& free_values, int v) const
+  {
+    const int i = laplacian_->free_index(v);
+    return i >= 0 ? free_values[i] : 0.0;
+  }
+
+  const Mesh_index& index_;
+  Curvature_map<Metric> curvature_;
+  std::optional<Dynamic_laplacian<SparseSolver>> laplacian_;
+  Eigen::VectorXd k0_, b_, x_;
+  double sum_b_ = 0;
+  bool pinned_ = false;
+  std::vector<int> cones_;
+  Eigen::MatrixXd capacitance_;
+  std::string message_;
+};
+
+} // namespace internal
+} // namespace ICM
+
+#endif // ICM_CONES_LINEARIZED_CONES_H
