@@ -83,8 +83,8 @@ struct Arguments
   std::string metric = ICM::Default_metric::name;
   std::string energy = ICM::Curvature_entropy::name;
   std::string boundary = ICM::Free_border().name();
-  int max_cones = -1;                        // -1: automatic
-  double cone_target = 0;                    // --cone-target: 0 unless given
+  int max_cones = -1;     // -1: automatic
+  double cone_target = 0; // --cone-target: 0 unless given
   std::string cone_placement = "linearized";
   bool cones_asked = false;                  // --cones auto or N > 0, or --cone-target given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
@@ -266,9 +266,10 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                 "arc-length circle or square), circle-domain (every border loop a circle, no cut; genus 0)")
     ->check(CLI::IsMember(boundary_names()))
     ->type_name("NAME");
-  app.add_option("--cones", cones_text,
-                 "automatic interior cones: 'auto' (default: until the linearized max |u - u0| <= 0.6, at most 32), "
-                 "exactly N (also on a disk whose free border is not extreme), 0 for none")
+  app
+    .add_option("--cones", cones_text,
+                "automatic interior cones: 'auto' (default: until the linearized max |u - u0| <= 0.6, at most 32), "
+                "exactly N (also on a disk whose free border is not extreme), 0 for none")
     ->check(cone_count_validator())
     ->type_name("auto|N");
   app
@@ -276,8 +277,9 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                 "add cones until the linearized optimum's max |u - u0| is at most T (at most --cones N, default 32)")
     ->check(CLI::PositiveNumber)
     ->type_name("T");
-  app.add_option("--cone-placement", args.cone_placement,
-                 "greedy cones on the linearized optimum (default) or on the exact one, from Algorithm 3's minima")
+  app
+    .add_option("--cone-placement", args.cone_placement,
+                "greedy cones on the linearized optimum (default) or on the exact one, from Algorithm 3's minima")
     ->check(CLI::IsMember({"linearized", "exact"}))
     ->type_name("NAME");
   app.add_option("--cone", cone_texts, "a cone of DEGREES at the input's VERTEX (repeatable)")

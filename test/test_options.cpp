@@ -98,7 +98,9 @@ std::vector<Bad_option<ICM::Surface_parameterization_options>> surface_cases()
 {
   using O = ICM::Surface_parameterization_options;
   std::vector<Bad_option<O>> cases = {
-    {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = 0; }},
+    {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = -1; }},
+    {"cones.placement", [](O& o) { o.cones.placement = static_cast<ICM::Cone_placement>(7); }},
+    {"cones.ranked_candidates", [](O& o) { o.cones.ranked_candidates = 0; }},
     {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = nan_value; }},
     {"cones.max_cones", [](O& o) { o.cones.max_cones = -1; }},
     {"initial_cones", [](O& o) { o.initial_cones = -5; }},
@@ -223,11 +225,13 @@ TEST(Options, OneNewtonOptionsServeEveryStageUnlessOneSetsItsOwn)
   EXPECT_EQ(ICM::with_newton(options.cones, options.newton).newton->tolerance, 1e-12);
   EXPECT_EQ(ICM::with_newton(options.cones, options.newton).newton->max_iterations, 100);
 
-  // And the run's Newton reaches the cone placement: with one Newton step allowed, placing
-  // cones on a closed surface cannot converge, which the run reports from that stage.
+  // And the run's Newton reaches the cone placement on the exact optimum (the linearized
+  // one runs no Newton): with one Newton step allowed, placing cones on a closed surface
+  // cannot converge, which the run reports from that stage.
   Mesh sphere = read("sphere966.off");
   auto uv = sphere.add_property_map<Mesh::Halfedge_index, Point_2>("h:uv").first;
   ICM::Surface_parameterization_options starved;
+  starved.cones.placement = ICM::Cone_placement::Exact_optimum;
   starved.newton.max_iterations = 1;
   const ICM::Surface_parameterization_report report = ICM::parameterize(sphere, uv, starved);
   EXPECT_EQ(report.status, SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM) << report.message;

@@ -191,6 +191,12 @@ struct Cone_options
   /// gets at least two.
   int max_cones = 32;
   Cone_placement placement = Cone_placement::Linearized;
+  /// Linearized placement: 1 makes the largest |u - u0| the next cone (BFF's rule); N > 1
+  /// compares the N largest peaks by the area-weighted variance of the linearized u each
+  /// leaves. The variance is the linearized log area figure, which it lowers at a fixed count
+  /// on most closed meshes but not where the linearization is far off (the camel's legs:
+  /// doc/benchmarks.md, Cones), so the default is 1.
+  int ranked_candidates = 1;
   /// Unset: the run's `Surface_parameterization_options::newton` (called directly, the
   /// defaults).
   std::optional<Newton_options> newton;
@@ -201,6 +207,7 @@ inline Status check_options(const Cone_options& options, const std::string& pref
   return internal::Option_checks(prefix)
     .real("max_log_scale", options.max_log_scale, 0, true)
     .one_of("placement", options.placement, 2)
+    .at_least("ranked_candidates", options.ranked_candidates, 1)
     .at_least("max_cones", options.max_cones, 0)
     .nested(check_options(options.newton, prefix + "newton."))
     .status();

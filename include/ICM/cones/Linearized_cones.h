@@ -86,16 +86,10 @@ public:
   /// where a closed surface's first cone goes.
   int uniform_curvature_extreme(bool maxima) const
   {
-    const int nv = index_.number_of_vertices();
-    std::vector<double> area(nv, 0.0);
+    const std::vector<double> area = vertex_areas();
     double total = 0;
-    for(const auto& f : index_.faces)
-    {
-      const double a = triangle_area(index_.points[f[0]], index_.points[f[1]], index_.points[f[2]]);
-      for(int v : f)
-        area[v] += a / 3;
+    for(double a : area)
       total += a;
-    }
     Eigen::VectorXd rhs(laplacian_->size());
     for(int i = 0; i < laplacian_->size(); ++i)
     {
@@ -135,7 +129,35 @@ public:
   }
 
   /// u - u0 of the linearized optimum with the cones so far, per vertex.
-  Eigen::VectorXd solve() const
+  Eigen::VectorXd solve() const { return solve_with_cones(b_, sum_b_, x_); }
+
+  /// The change of the optimum per unit of curvature taken out at vertex `v` with the cones
+  /// so far held at u = 0: a new cone at v moves u by -u_v / h_v(v) times this h.
+  Eigen::VectorXd unit_response(int v) const
+  {
+    Eigen::VectorXd source = Eigen::VectorXd::Zero(laplacian_->size());
+    if(laplacian_->free_index(v) >= 0)
+      source[laplacian_->free_index(v)] = 1;
+    return solve_with_cones(source, 1.0, laplacian_->solve(source));
+  }
+
+  /// The vertices' shares of the 3D area.
+  std::vector<double> vertex_areas() const
+  {
+    std::vector<double> area(index_.number_of_vertices(), 0.0);
+    for(const auto& f : index_.faces)
+    {
+      const double a = triangle_area(index_.points[f[0]], index_.points[f[1]], index_.points[f[2]]);
+      for(int v : f)
+        area[v] += a / 3;
+    }
+    return area;
+  }
+
+private:
+  /// Delta u = b off the cones (b given per free unknown, `b_sum` its sum over every
+  /// vertex), u = 0 at the cones; `x` = Delta_FF^{-1} b.
+  Eigen::VectorXd solve_with_cones(const Eigen::VectorXd& b, double b_sum, const Eigen::VectorXd& x) const
   {
     const int k = static_cast<int>(cones_.size());
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(k);
@@ -144,10 +166,10 @@ public:
     {
       Eigen::VectorXd rhs(k);
       for(int t = 0; t < k; ++t)
-        rhs[t] = -value_at(x_, cones_[t]);
+        rhs[t] = -value_at(x, cones_[t]);
       lambda = capacitance_.ldlt().solve(rhs);
     }
-    else if(pinned_)
+    else if(pinned_ && k > 0)
     {
       Eigen::MatrixXd saddle = Eigen::MatrixXd::Zero(k + 1, k + 1);
       Eigen::VectorXd rhs(k + 1);
@@ -156,19 +178,19 @@ public:
       {
         saddle(t, k) = 1;
         saddle(k, t) = 1;
-        rhs[t] = -value_at(x_, cones_[t]);
+        rhs[t] = -value_at(x, cones_[t]);
       }
-      rhs[k] = -sum_b_;
+      rhs[k] = -b_sum;
       const Eigen::VectorXd solution = saddle.fullPivLu().solve(rhs);
       lambda = solution.head(k);
       constant = solution[k];
     }
-    Eigen::VectorXd rhs = b_;
+    Eigen::VectorXd source = b;
     for(int t = 0; t < k; ++t)
       if(laplacian_->free_index(cones_[t]) >= 0)
-        rhs[laplacian_->free_index(cones_[t])] += lambda[t];
-    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(rhs)) : x_;
-    Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), pinned_ ? constant : 0.0);
+        source[laplacian_->free_index(cones_[t])] += lambda[t];
+    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(source)) : x;
+    Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), constant);
     for(int i = 0; i < laplacian_->size(); ++i)
       u[laplacian_->vertex(i)] += free_u[i];
     for(int v : cones_)
@@ -176,7 +198,6 @@ public:
     return u;
   }
 
-private:
   double value_at(const Eigen::VectorXd& free_values, int v) const
   {
     const int i = laplacian_->free_index(v);

@@ -89,15 +89,61 @@ struct Cone_selection
   bool ok() const { return message.empty(); }
 };
 
+/// The `count` non-singular vertices with the largest |u| among those where |u| is a local
+/// maximum over the ring (the largest of all comes first), largest first.
+inline std::vector<int> largest_peaks(const internal::Mesh_index& index, const Eigen::VectorXd& u,
+                                      const std::vector<char>& is_singular, int count)
+{
+  const int nv = index.number_of_vertices();
+  std::vector<char> is_peak(nv);
+  for(int v = 0; v < nv; ++v)
+    is_peak[v] = !is_singular[v];
+  for(const auto& e : index.edges)
+  {
+    const double a = std::abs(u[e[0]]), b = std::abs(u[e[1]]);
+    if(a < b || (a == b && e[0] < e[1]))
+      is_peak[e[0]] = 0;
+    else
+      is_peak[e[1]] = 0;
+  }
+  std::vector<int> peaks;
+  for(int v = 0; v < nv; ++v)
+    if(is_peak[v])
+      peaks.push_back(v);
+  const auto larger = [&](int a, int b) { return std::abs(u[a]) > std::abs(u[b]); };
+  const std::size_t kept = std::min<std::size_t>(std::max(count, 1), peaks.size());
+  std::partial_sort(peaks.begin(), peaks.begin() + kept, peaks.end(), larger);
+  peaks.resize(kept);
+  return peaks;
+}
+
+/// sum_v a_v (u_v - mean)^2 / sum_v a_v, the mean weighted by a.
+inline double area_weighted_variance(const Eigen::VectorXd& u, const std::vector<double>& area)
+{
+  double total = 0, mean = 0;
+  for(int v = 0; v < u.size(); ++v)
+  {
+    total += area[v];
+    mean += area[v] * u[v];
+  }
+  mean /= total;
+  double spread = 0;
+  for(int v = 0; v < u.size(); ++v)
+    spread += area[v] * (u[v] - mean) * (u[v] - mean);
+  return spread / total;
+}
+
 /// Greedy cone placement on the linearized optimum (cones/Linearized_cones.h): the singular
 /// set starts as the border plus `seeds` (plus, on a closed surface without one, the extreme
-/// of the linearized uniform-curvature metric); each round makes the non-singular vertex with
-/// the largest linearized |u - u0| a cone, until `max_log_scale` (unless 0) or `max_cones`.
+/// of the linearized uniform-curvature metric); each round makes a cone of the non-singular
+/// vertex with the largest linearized |u - u0|, or, with `ranked_candidates` > 1, of the one
+/// among that many peaks of |u - u0| whose cone leaves the least area-weighted variance of the
+/// linearized u (one more solve per candidate), until `max_log_scale` (unless 0) or
+/// `max_cones`.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
 Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const Metric& metric,
                                        const std::vector<int>& seeds, const Cone_options& options = Cone_options())
 {
-  const int nv = index.number_of_vertices();
   Cone_selection selection;
   std::vector<char> is_singular(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
   for(int v : seeds)
@@ -114,8 +160,12 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
   }
   const bool closed = index.number_of_boundary_loops() == 0;
   const int chi = index.euler_characteristic();
-  // One cone of a closed genus-0 surface would carry 4 pi: it needs two, whatever the limit.
-  const int wanted = closed && chi > 0 ? std::max(2, options.max_cones) : options.max_cones;
+  // Whatever the limit: one cone of a closed genus-0 surface would carry 4 pi, so it needs
+  // two; a closed surface of genus g > 1 needs 2g - 2, about -2 pi each (angle 4 pi), since
+  // fewer cones of many turns each leave the exact optimum out of the metrics' reach (genus
+  // 100 with 32 cones: test_surfaces, HighGenusSlabsMapWithoutFlipsOrOverlaps).
+  const int least = !closed ? 0 : chi > 0 ? 2 : std::max(0, -chi);
+  const int wanted = std::max(least, options.max_cones);
   const auto make_cone = [&](int v) {
     is_singular[v] = 1;
     selection.cones.push_back(v);
@@ -123,19 +173,29 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
   };
   if(!problem.is_determined() && wanted > 0)
     make_cone(problem.uniform_curvature_extreme(chi < 0));
+  const std::vector<double> area = problem.vertex_areas();
   for(;;)
   {
     const Eigen::VectorXd u = problem.solve();
-    int worst = -1;
-    for(int v = 0; v < nv; ++v)
-      if(!is_singular[v] && (worst < 0 || std::abs(u[v]) > std::abs(u[worst])))
-        worst = v;
-    selection.max_log_scale.push_back(worst < 0 ? 0.0 : std::abs(u[worst]));
+    const std::vector<int> peaks = largest_peaks(index, u, is_singular, options.ranked_candidates);
+    selection.max_log_scale.push_back(peaks.empty() ? 0.0 : std::abs(u[peaks[0]]));
     const bool small_enough = options.max_log_scale > 0 && selection.max_log_scale.back() <= options.max_log_scale &&
-                              !(closed && chi > 0 && selection.cones.size() < 2);
-    if(worst < 0 || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
+                              static_cast<int>(selection.cones.size()) >= least;
+    if(peaks.empty() || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
       return selection;
-    make_cone(worst);
+    int best = peaks[0];
+    double least_spread = HUGE_VAL;
+    for(std::size_t i = 0; peaks.size() > 1 && i < peaks.size(); ++i)
+    {
+      const Eigen::VectorXd h = problem.unit_response(peaks[i]);
+      const double spread = area_weighted_variance(u - (u[peaks[i]] / h[peaks[i]]) * h, area);
+      if(spread < least_spread)
+      {
+        least_spread = spread;
+        best = peaks[i];
+      }
+    }
+    make_cone(best);
   }
 }
 
@@ -145,8 +205,8 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
 /// `max_cones` is reached. A closed genus-0 surface needs two seeds (one cone would carry
 /// curvature 4 pi); other surfaces need one when they have no border.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
-Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
-                                  const Cone_options& options = Cone_options())
+Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metric& metric,
+                                  const std::vector<int>& seeds, const Cone_options& options = Cone_options())
 {
   const int nv = index.number_of_vertices();
   Cone_selection selection;

@@ -261,7 +261,11 @@ inline Chart_problem singular_set_problem(const Mesh_index& index, const std::ve
 inline Status remove_component_overlaps(const Mesh_index& index, Chart_report& chart, Cut_mesh& cut,
                                         std::vector<Uv>& uv)
 {
-  const Overlap_removal removal = remove_overlaps(index, cut, uv);
+  // A cone of angle above 2 pi (the negative cones of genus > 1) that the cut tree meets only
+  // once lays its neighbourhood on two sheets, which takes a cut of its own: the limit grows
+  // with the cones (genus 150 needs about 300; test_surfaces, HighGenusSlabsMapWithoutFlipsOrOverlaps).
+  const int max_cuts = std::max(64, 2 * static_cast<int>(chart.cones.size()));
+  const Overlap_removal removal = remove_overlaps(index, cut, uv, max_cuts);
   if(!cut.ok())
     return cut.status;
   chart.pieces = removal.pieces;
