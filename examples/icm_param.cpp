@@ -444,6 +444,7 @@ struct Run_figures
   /// an energy or a prescribed border removes none: both are its count).
   std::optional<int> overlaps, raw_overlaps;
   std::size_t seam_edges = 0;
+  double seam_length = 0; ///< over the square root of the 3D area
   double curvature_error = 0, length_error = 0, seam_error = 0;
   std::string metrics, fallbacks, layout = "propagation";
   double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_parameterize = 0;
@@ -533,6 +534,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["genus"] = t.genus;
   j["cones"] = t.cones;
   j["seam_edges"] = t.seam_edges;
+  j["seam_length"] = t.seam_length;
   j["layout"] = t.layout;
   j["newton_iterations"] = t.newton;
   j["max_curvature_error"] = t.curvature_error;
@@ -663,6 +665,21 @@ std::string why_an_overlap_is_refused(const Arguments& args, const ICM::Paramete
          "is); --keep-overlaps writes it anyway";
 }
 
+/// The 3D length of `seams` over the square root of the mesh's 3D area (scale-free).
+double seam_length_over_root_area(const Mesh& mesh, const std::vector<Mesh::Edge_index>& seams)
+{
+  double length = 0, area = 0;
+  for(Mesh::Edge_index e : seams)
+    length += std::sqrt(CGAL::squared_distance(mesh.point(source(e, mesh)), mesh.point(target(e, mesh))));
+  for(Mesh::Face_index f : faces(mesh))
+  {
+    const Mesh::Halfedge_index h = halfedge(f, mesh);
+    area += std::sqrt(CGAL::squared_area(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)),
+                                         mesh.point(target(next(h, mesh), mesh))));
+  }
+  return area > 0 ? length / std::sqrt(area) : 0.0;
+}
+
 /// Any energy on any surface, by `ICM::parameterize` (cones and seams where needed): the
 /// figures of its run into `figures`, or the reason it failed. The entropy's runs are
 /// instantiated here, the other energies' each in its own file (icm_param_energy.h).
@@ -710,6 +727,7 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
   if(report.status != SMP::OK)
     return std::string(ICM::error_message(report.status)) + ": " + report.message;
   figures.emplace(report, seams.size(), args.energy);
+  figures->seam_length = seam_length_over_root_area(mesh, seams);
   return {};
 }
 

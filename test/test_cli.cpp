@@ -746,4 +746,37 @@ TEST(Cli, BoundaryConditionsRefuseWhatTheyCannotDo)
   EXPECT_TRUE(box.listing().empty());
 }
 
+TEST(Cli, ConeCountIsExactAndATargetStopsEarlier)
+{
+  // --cones N places exactly N, on a closed sphere and on a disk whose free border alone
+  // would get none, by either placement; --cone-target stops once the linearized
+  // distortion is below it, so a looser target takes fewer cones.
+  Sandbox box;
+  const auto figures = [&](const std::string& input, const std::string& options) {
+    const Sandbox::Result r = box.run(quote(data_path(input)) + " -o out.obj --json " + options);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.err;
+    return r.exit_code == 0 ? lines_of(r.out).at(0) : std::string("{}");
+  };
+  for(const char* placement : {"linearized", "exact"})
+  {
+    const std::string five = figures("sphere966.off", std::string("--cones 5 --cone-placement ") + placement);
+    EXPECT_EQ(json_value(five, "cones"), "5") << placement;
+    EXPECT_GT(json_number(five, "seam_length"), 0) << placement;
+  }
+  const std::string disk = figures("nefertiti.off", "--cones 3");
+  EXPECT_EQ(json_value(disk, "cones"), "3");
+  EXPECT_EQ(json_number(figures("nefertiti.off", ""), "seam_length"), 0);
+  const double tight = json_number(figures("sphere966.off", "--cone-target 0.3"), "cones");
+  const double loose = json_number(figures("sphere966.off", "--cone-target 1.5"), "cones");
+  EXPECT_LT(loose, tight);
+  EXPECT_GE(loose, 2);
+  for(const char* bad : {"--cone-target 0", "--cone-target x", "--cone-placement nearest"})
+  {
+    const Sandbox::Result r = box.run(quote(data_path("sphere966.off")) + " -o bad.obj " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    const std::vector<std::string> files = box.listing();
+    EXPECT_EQ(std::find(files.begin(), files.end(), "bad.obj"), files.end()) << bad;
+  }
+}
+
 } // namespace

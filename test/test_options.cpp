@@ -101,6 +101,7 @@ std::vector<Bad_option<ICM::Surface_parameterization_options>> surface_cases()
     {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = -1; }},
     {"cones.placement", [](O& o) { o.cones.placement = static_cast<ICM::Cone_placement>(7); }},
     {"cones.ranked_candidates", [](O& o) { o.cones.ranked_candidates = 0; }},
+    {"cones.sweeps", [](O& o) { o.cones.sweeps = -1; }},
     {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = nan_value; }},
     {"cones.max_cones", [](O& o) { o.cones.max_cones = -1; }},
     {"initial_cones", [](O& o) { o.initial_cones = -5; }},

@@ -107,6 +107,9 @@ struct Chart_report : Chart_solve_report
 {
   int vertices = 0, faces = 0, boundary_loops = 0, genus = 0;
   int seam_edges = 0, homology_generators = 0;
+  /// Total 3D length of the seam edges (the cut and the overlap removal's cuts) over the
+  /// square root of the component's 3D area: scale-free, 0 without a seam.
+  double seam_length = 0;
   /// Overlap removal: pairs of border edges that crossed in the raw layout, the pieces the
   /// chart was cut into (1: none) and the seam edges that cut added.
   int raw_overlapping_border_edges = 0;

@@ -163,6 +163,7 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
       return finish(failure.code, "component " + std::to_string(c) + " (" + std::to_string(chart.vertices) +
                                     " vertices, genus " + std::to_string(chart.genus) + ", " +
                                     std::to_string(chart.boundary_loops) + " boundary loops): " + failure.message);
+    report.charts.back().seam_length = internal::relative_seam_length(index, cuts[c]);
     if(seam_edges)
       for(int e = 0; e < index.number_of_edges(); ++e)
         if(cuts[c].disk_edges[e][1] >= 0)

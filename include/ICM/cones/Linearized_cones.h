@@ -26,8 +26,10 @@
 #include <ICM/internal/Vector_geometry.h>
 
 #include <Eigen/Core>
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -126,6 +128,27 @@ public:
       capacitance_(t, k) = g;
       capacitance_(k, t) = g;
     }
+  }
+
+  /// Position of cone `v` among the cones, in the order they were added.
+  int position_of(int v) const { return static_cast<int>(std::find(cones_.begin(), cones_.end(), v) - cones_.begin()); }
+
+  /// Makes the `i`-th cone an ordinary vertex again.
+  void remove_cone(int i)
+  {
+    const int k = static_cast<int>(cones_.size());
+    cones_.erase(cones_.begin() + i);
+    Eigen::MatrixXd kept(k - 1, k - 1);
+    for(int r = 0, rr = 0; r < k; ++r)
+    {
+      if(r == i)
+        continue;
+      for(int c = 0, cc = 0; c < k; ++c)
+        if(c != i)
+          kept(rr, cc++) = capacitance_(r, c);
+      ++rr;
+    }
+    capacitance_ = std::move(kept);
   }
 
   /// u - u0 of the linearized optimum with the cones so far, per vertex.

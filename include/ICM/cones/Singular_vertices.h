@@ -133,6 +133,41 @@ inline double area_weighted_variance(const Eigen::VectorXd& u, const std::vector
   return spread / total;
 }
 
+/// Improvement sweeps of the linearized placement: each automatic cone in turn is taken out
+/// and put back where the linearized |u - u0| is then largest, which moves it when a later
+/// cone took over its part (the first cones were placed before the others existed); up to
+/// `sweeps` times over all, until none moves. The greedy's own rule, so every move keeps the
+/// cone where the greedy would place it given all the others.
+template <class Problem>
+void move_cones_to_the_largest_scale(Problem& problem, const internal::Mesh_index& index, std::size_t fixed, int sweeps,
+                                     std::vector<char>& is_singular, Cone_selection& selection)
+{
+  const int nv = index.number_of_vertices();
+  for(int sweep = 0; sweep < sweeps; ++sweep)
+  {
+    bool moved = false;
+    for(std::size_t i = fixed; i < selection.cones.size(); ++i)
+    {
+      const int old = selection.cones[i];
+      // The problem numbers its cones in the order added: removing and adding puts this one
+      // last there, so position i is looked up by vertex.
+      problem.remove_cone(problem.position_of(old));
+      is_singular[old] = 0;
+      const Eigen::VectorXd u = problem.solve();
+      int best = old;
+      for(int v = 0; v < nv; ++v)
+        if(!is_singular[v] && std::abs(u[v]) > std::abs(u[best]))
+          best = v;
+      is_singular[best] = 1;
+      problem.add_cone(best);
+      selection.cones[i] = best;
+      moved = moved || best != old;
+    }
+    if(!moved)
+      return;
+  }
+}
+
 /// Greedy cone placement on the linearized optimum (cones/Linearized_cones.h): the singular
 /// set starts as the border plus `seeds` (plus, on a closed surface without one, the extreme
 /// of the linearized uniform-curvature metric); each round makes a cone of the non-singular
@@ -152,6 +187,7 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
       is_singular[v] = 1;
       selection.cones.push_back(v);
     }
+  const std::size_t user_cones = selection.cones.size();
   internal::Linearized_cone_problem<SparseSolver, Metric> problem(index, metric, is_singular);
   if(!problem.ok())
   {
@@ -182,7 +218,10 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
     const bool small_enough = options.max_log_scale > 0 && selection.max_log_scale.back() <= options.max_log_scale &&
                               static_cast<int>(selection.cones.size()) >= least;
     if(peaks.empty() || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
+    {
+      move_cones_to_the_largest_scale(problem, index, user_cones, options.sweeps, is_singular, selection);
       return selection;
+    }
     int best = peaks[0];
     double least_spread = HUGE_VAL;
     for(std::size_t i = 0; peaks.size() > 1 && i < peaks.size(); ++i)

@@ -276,6 +276,22 @@ inline Status remove_component_overlaps(const Mesh_index& index, Chart_report& c
   return Status::success();
 }
 
+/// `Chart_report::seam_length`: the 3D length of the surface edges cut open, over the square
+/// root of the 3D area.
+inline double relative_seam_length(const Mesh_index& index, const Cut_mesh& cut)
+{
+  double length = 0, area = 0;
+  for(int e = 0; e < index.number_of_edges(); ++e)
+    if(cut.disk_edges[e][1] >= 0)
+    {
+      const Point3 d = difference(index.points[index.edges[e][1]], index.points[index.edges[e][0]]);
+      length += std::hypot(d[0], d[1], d[2]);
+    }
+  for(const auto& f : index.faces)
+    area += triangle_area(index.points[f[0]], index.points[f[1]], index.points[f[2]]);
+  return area > 0 ? length / std::sqrt(area) : 0.0;
+}
+
 /// One component: cones, cut, optimum, layout, checks, overlaps. `uv` receives one UV per
 /// wedge of `cut.disk`. `user_seams` (per edge; empty: none) are taken as the cut as given,
 /// their ends and branch points singular with a free angle, and no cone is added.
