@@ -250,8 +250,18 @@ std::vector<Seam_method> make_seam_registry()
 //                             given to CGAL's methods, when overlap removal made pieces)
 //   icm_free_boundary_opened  icm_free_boundary on the closed mesh opened at its first vertex
 //   icm_circle_domain         a genus-0 mesh with several loops onto nested circles, no cut
-const std::vector<std::string> surface_methods = {"icm", "icm_keep_overlaps", "icm_free_boundary_opened",
-                                                  "icm_circle_domain"};
+//   icm_cones_4, _8, _16, _32 the whole pipeline with exactly that many cones: the area
+//                             distortion against the cone count (asked for by --methods)
+const std::vector<std::string> surface_methods = {
+  "icm",          "icm_keep_overlaps", "icm_free_boundary_opened", "icm_circle_domain", "icm_cones_4", "icm_cones_8",
+  "icm_cones_16", "icm_cones_32"};
+
+// The cone count of an icm_cones_N row, or -1 for another name.
+int exact_cone_count(const std::string& name)
+{
+  const std::string prefix = "icm_cones_";
+  return name.rfind(prefix, 0) == 0 ? std::stoi(name.substr(prefix.size())) : -1;
+}
 
 // The methods drawn by --svg-panels, in this order.
 const std::vector<std::string> panel_methods = {"icm_free_boundary", "lscm", "arap"};
@@ -292,7 +302,9 @@ const char* usage_text = "usage: compare [--json] [--runs N] [--time-limit SECON
                          "  --time-limit S     per-run limit in seconds; slower runs are killed and shown as\n"
                          "                     'timeout' (default 600)\n"
                          "  --methods a,b      run only these methods (default: all); besides the registry's:\n"
-                         "                     icm, icm_keep_overlaps, icm_free_boundary_opened; on a surface\n"
+                         "                     icm, icm_keep_overlaps, icm_free_boundary_opened, icm_cones_4,\n"
+                         "                     icm_cones_8, icm_cones_16, icm_cones_32 (exactly that many\n"
+                         "                     cones); on a surface\n"
                          "                     that is not a disk, icm_u_square, icm_area, icm_angle and\n"
                          "                     icm_log_area run ICM::parameterize with that energy\n"
                          "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
@@ -1090,14 +1102,21 @@ std::string disk_check(Mesh& mesh)
 // corner. The report's stage times and counts go back as extras, the seam edges as edge
 // indices; for an energy other than the entropy also its steps (summed over the components)
 // and E at the entropy optimum and at the result (the components' means weighted by faces).
+// `exact_cones` >= 0 places exactly that many automatic cones (as `icm_param --cones N`).
 template <class Energy = CGAL::Default>
-Job icm_job(const Mesh& input, bool remove_overlaps)
+Job icm_job(const Mesh& input, bool remove_overlaps, int exact_cones = -1)
 {
-  return [&input, remove_overlaps](Child_result& r, bool measure) {
+  return [&input, remove_overlaps, exact_cones](Child_result& r, bool measure) {
     Mesh mesh = input;
     Corner_UV_map uvmap = mesh.add_property_map<halfedge_descriptor, Point_2>("h:compare_uv", Point_2(0, 0)).first;
     ICM::Surface_parameterization_options options;
     options.remove_overlaps = remove_overlaps;
+    if(exact_cones >= 0)
+    {
+      options.cones.max_cones = exact_cones;
+      options.cones.max_log_scale = 0;
+      options.border_max_log_scale = 0;
+    }
     std::vector<edge_descriptor> seams;
     const auto t0 = std::chrono::steady_clock::now();
     const ICM::Surface_parameterization_report report =
@@ -1124,8 +1143,12 @@ Job icm_job(const Mesh& input, bool remove_overlaps)
     }
     r.newton_iterations = newton;
     r.metric = metric + (fallback.empty() ? "" : ", fallback");
+    double seam_length = 0; // over the square root of the area; one component's, else summed
+    for(const ICM::Chart_report& c : report.charts)
+      seam_length += c.seam_length;
     r.extra = {{"cones", cones},
                {"seam_edges", static_cast<double>(seams.size())},
+               {"seam_length", seam_length},
                {"charts", pieces},
                {"overlap_cut_edges", overlap_cuts},
                {"raw_border_crossings", raw_crossings},
@@ -1449,7 +1472,7 @@ bool write_panels(const std::string& mesh_path, const Options& opt, const std::v
 void add_icm_report(Row& row, const Child_result& result)
 {
   auto is_measure = [](const std::string& key) {
-    return key.rfind("seconds", 0) == 0 || key == "initial_energy" || key == "final_energy";
+    return key.rfind("seconds", 0) == 0 || key == "initial_energy" || key == "final_energy" || key == "seam_length";
   };
   for(const auto& [key, value] : result.extra)
     row.json_extra.emplace_back(key, is_measure(key) ? json_num(value) : json_count(value));
@@ -1641,11 +1664,11 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
     {
       row = done[name];
     }
-    else if(name == "icm" || name == "icm_keep_overlaps")
+    else if(name == "icm" || name == "icm_keep_overlaps" || exact_cone_count(name) >= 0)
     {
       progress(name);
       Child_result result;
-      row = run_job(icm_job(mesh, name == "icm"), name, opt, base, &result);
+      row = run_job(icm_job(mesh, name != "icm_keep_overlaps", exact_cone_count(name)), name, opt, base, &result);
       add_icm_report(row, result);
       progress_done(row);
     }
@@ -1837,10 +1860,10 @@ int main(int argc, char** argv)
       {
         row = run_method(mesh, *method, opt, base);
       }
-      else if(name == "icm" || name == "icm_keep_overlaps")
+      else if(name == "icm" || name == "icm_keep_overlaps" || exact_cone_count(name) >= 0)
       {
         Child_result result;
-        row = run_job(icm_job(mesh, name == "icm"), name, opt, base, &result);
+        row = run_job(icm_job(mesh, name != "icm_keep_overlaps", exact_cone_count(name)), name, opt, base, &result);
         add_icm_report(row, result);
       }
       else

@@ -78,10 +78,15 @@ SURFACE_ENERGY_MESHES = ["sphere966.off", "pig.off", "cow.off", "eight.off", "el
                          "mech-holes-shark.off", "knot1.off"]
 SURFACE_ENERGY_METHODS = "icm,icm_u_square,icm_area,icm_angle,icm_log_area"
 
+# Area distortion against the cone count (compare's icm_cones_N rows and the default).
+CONE_MESHES = CLOSED_GENUS_0 + ["armadillo.off", "bunny00.off", "eight.off", "femur.off"]
+CONE_COUNTS = [4, 8, 16, 32]
+CONE_METHODS = ",".join([f"icm_cones_{n}" for n in CONE_COUNTS] + ["icm"])
+
 SECTIONS = {  # section: the runs it reads
     "disks": ["all"], "energies": ["all"], "nondisk": ["all"], "surfaces": ["all", "icm"],
     "surface-energies": ["senergies"], "opened": ["opened"], "border": ["all", "border"],
-    "scaling": [], "scaling-short": ["scaling"],
+    "scaling": [], "scaling-short": ["scaling"], "cones": ["cones"],
 }
 REGISTRY_METRICS = ["icm_free_boundary", "icm_vertex_scaling", "icm_inversive_distance",
                     "icm_circle_packing"]
@@ -218,6 +223,8 @@ def run(name, a, dirs):
     elif name == "senergies":
         rows, cmds = compare_rows(a, meshes(SURFACE_ENERGY_MESHES),
                                   ["--methods", SURFACE_ENERGY_METHODS])
+    elif name == "cones":
+        rows, cmds = compare_rows(a, meshes(CONE_MESHES), ["--methods", CONE_METHODS])
     elif name == "opened":
         paths = meshes(CLOSED_GENUS_0)
         rows, cmds = compare_rows(a, paths, ["--open", "--methods", OPENED_METHODS])
@@ -421,6 +428,30 @@ def section_surfaces(data):
     return "\n".join(out)
 
 
+def section_cones(data):
+    _, rows = data["cones"]
+    methods = CONE_METHODS.split(",")
+    counts = [f"{n} cones" for n in CONE_COUNTS] + ["default"]
+    out = ["| mesh | faces | genus / loops | " + " | ".join(counts) + " |",
+           "|---|---:|---|" + "---|" * len(counts),
+           ]
+    for mesh, group in by_mesh(rows, methods):
+        by_method = {r["method"]: r for r in group}
+        any_row = group[0]
+        topo = f'{any_row["genus"]} / {any_row["loops"]}' if "genus" in any_row else "disk"
+        cells = []
+        for m in methods:
+            r = by_method.get(m)
+            if r is None or not r["status"].startswith("ok"):
+                cells.append(cell(r["status"]) if r else "")
+                continue
+            cells.append(f'{num(r.get("log_area_distortion"), 3)} / {integer(r.get("charts"))} / '
+                         f'{num(r.get("seam_length"), 3)} / {sec(r.get("seconds"))}' +
+                         (f' ({integer(r.get("cones"))})' if m == "icm" else ""))
+        out.append("| " + " | ".join([mesh, str(any_row["faces"]), topo] + cells) + " |")
+    return "\n".join(out)
+
+
 def section_surface_energies(data):
     _, rows = data["senergies"]
     methods = SURFACE_ENERGY_METHODS.split(",")
@@ -493,6 +524,7 @@ def section_scaling(series):
 
 RENDER = {"disks": section_disks, "energies": section_energies, "nondisk": section_nondisk,
           "surfaces": section_surfaces, "surface-energies": section_surface_energies,
+          "cones": section_cones,
           "opened": section_opened, "border": section_border,
           "scaling-short": section_scaling_short}
 
