@@ -1,7 +1,7 @@
 // Step 4: the singular (cone) vertex set S (paper Sec. III-C, Algorithm 3), on the surface as
 // given (before any cut).
 //
-// Three ways to choose interior cones:
+// Two ways to choose interior cones:
 // - `curvature_minima` is Algorithm 3: spread the total curvature 2 pi chi uniformly over the
 //   interior, solve u = K^{-1}(k), and rank the local minima of u - u0 (where the surface must
 //   shrink most to become uniformly curved) deepest first;
