@@ -276,22 +276,10 @@ Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metri
     }
     // Candidates: non-singular vertices whose |u - u0| is a local maximum over their ring
     // (so that one round never puts two cones side by side), largest first.
-    Eigen::VectorXd scale = (u - metric.u0).cwiseAbs();
-    std::vector<char> is_peak(nv);
-    for(int v = 0; v < nv; ++v)
-      is_peak[v] = !is_singular[v];
-    for(const auto& e : index.edges)
-    {
-      if(scale[e[0]] < scale[e[1]] || (scale[e[0]] == scale[e[1]] && e[0] < e[1]))
-        is_peak[e[0]] = 0;
-      else
-        is_peak[e[1]] = 0;
-    }
-    std::vector<int> peaks;
-    for(int v = 0; v < nv; ++v)
-      if(is_peak[v] && scale[v] > options.max_log_scale)
-        peaks.push_back(v);
-    std::sort(peaks.begin(), peaks.end(), [&](int a, int b) { return scale[a] > scale[b]; });
+    const Eigen::VectorXd scale = (u - metric.u0).cwiseAbs();
+    std::vector<int> peaks = largest_peaks(index, scale, is_singular, nv);
+    peaks.erase(std::find_if(peaks.begin(), peaks.end(), [&](int v) { return !(scale[v] > options.max_log_scale); }),
+                peaks.end());
     double largest = 0;
     for(int v = 0; v < nv; ++v)
       if(!is_singular[v])
