@@ -439,7 +439,7 @@ private:
 /// totals over the charts and the worst of each check.
 struct Run_figures
 {
-  int charts = 1, components = 1, cones = 0, genus = 0, loops = 0, newton = 0, moved = 0;
+  int charts = 1, components = 1, cones = 0, wide_cones = 0, genus = 0, loops = 0, newton = 0, moved = 0;
   /// Pairs of crossing border edges, after and before overlap removal (the parameterizer of
   /// an energy or a prescribed border removes none: both are its count).
   std::optional<int> overlaps, raw_overlaps;
@@ -481,6 +481,8 @@ struct Run_figures
     for(const ICM::Chart_report& c : report.charts)
     {
       cones += static_cast<int>(c.cones.size());
+      wide_cones += static_cast<int>(
+        std::count_if(c.cone_curvatures.begin(), c.cone_curvatures.end(), [](double k) { return k < 0; }));
       genus += c.genus;
       loops += c.boundary_loops;
       newton = std::max(newton, c.newton_iterations);
@@ -533,6 +535,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["boundary_loops"] = t.loops;
   j["genus"] = t.genus;
   j["cones"] = t.cones;
+  j["cones_above_full_turn"] = t.wide_cones;
   j["seam_edges"] = t.seam_edges;
   j["seam_length"] = t.seam_length;
   j["layout"] = t.layout;

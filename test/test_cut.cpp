@@ -267,9 +267,10 @@ void expect_cut_mesh(const Mesh_index& index, const std::vector<char>& is_seam)
 }
 
 /// Runs `cut_graph` and checks the result end to end.
-ICM::Cut_graph_result expect_disk_cut(const Mesh_index& index, const std::vector<char>& is_cone)
+ICM::Cut_graph_result expect_disk_cut(const Mesh_index& index, const std::vector<char>& is_cone,
+                                      const ICM::Cut_graph_options& options = ICM::Cut_graph_options())
 {
-  const ICM::Cut_graph_result result = ICM::cut_graph(index, is_cone);
+  const ICM::Cut_graph_result result = ICM::cut_graph(index, is_cone, options);
   EXPECT_TRUE(result.ok()) << result.status.message;
   if(!result.ok())
     return result;
@@ -551,6 +552,88 @@ TEST(CutGraph, PigWithConesJoinsConesAndLoops)
   for(int v = 0; v < index.number_of_vertices(); ++v)
     interior += is_cone[v] && !index.is_boundary_vertex[v];
   EXPECT_EQ(result.number_of_terminals, 7 + interior);
+}
+
+// --- cones of angle above 2 pi --------------------------------------------------------------
+
+/// The 3D angle of each wedge of surface vertex `v` in the cut: the corner angles at its
+/// copies in the disk, summed per copy.
+std::vector<double> wedge_angles(const Mesh_index& index, const std::vector<char>& is_seam, int v)
+{
+  const ICM::Cut_mesh cut = ICM::cut_mesh(index, is_seam);
+  EXPECT_TRUE(cut.ok()) << cut.status.message;
+  std::vector<double> angle(cut.disk.number_of_vertices(), 0.0);
+  for(const auto& f : cut.disk.faces)
+    for(int c = 0; c < 3; ++c)
+      if(cut.surface_vertex[f[c]] == v)
+      {
+        const auto a = ICM::internal::difference(cut.disk.points[f[(c + 1) % 3]], cut.disk.points[f[c]]);
+        const auto b = ICM::internal::difference(cut.disk.points[f[(c + 2) % 3]], cut.disk.points[f[c]]);
+        angle[f[c]] += std::atan2(ICM::internal::cross_norm(a, b), ICM::internal::dot(a, b));
+      }
+  std::vector<double> wedges;
+  for(int w = 0; w < cut.disk.number_of_vertices(); ++w)
+    if(cut.surface_vertex[w] == v)
+      wedges.push_back(angle[w]);
+  return wedges;
+}
+
+/// A cone whose layout angle is expected above 2 pi gets seams through it until no wedge
+/// scaled to that angle (angle / 3D angle sum) is wider than 0.9 of 2 pi; the cut stays one
+/// disk. Two such cones on sphere966 (angles 3.5 pi and 5.2 pi, needing 2 and 3 seams) and
+/// one on the genus-2 eight.
+void expect_wedges_below_a_full_turn(const std::string& name, int cones, const std::vector<double>& wide_curvatures)
+{
+  Mesh_index index;
+  ASSERT_TRUE(index_shared(name, index)) << name;
+  const auto is_cone = far_apart_cones(index, cones);
+  ICM::Cut_graph_options options;
+  options.cone_curvatures.assign(index.number_of_vertices(), std::nan(""));
+  std::vector<int> wide;
+  for(int v = 0; v < index.number_of_vertices() && wide.size() < wide_curvatures.size(); ++v)
+    if(is_cone[v])
+    {
+      options.cone_curvatures[v] = wide_curvatures[wide.size()];
+      wide.push_back(v);
+    }
+  const auto plain = expect_disk_cut(index, is_cone);
+  const auto result = expect_disk_cut(index, is_cone, options);
+  EXPECT_EQ(result.wide_cones_left_wide, 0);
+  EXPECT_GE(result.seam_length, plain.seam_length);
+  for(int w : wide)
+  {
+    const std::vector<double> wedges = wedge_angles(index, result.is_seam, w);
+    double total = 0;
+    for(double a : wedges)
+      total += a;
+    const double angle = 2 * pi - options.cone_curvatures[w];
+    EXPECT_GE(static_cast<int>(wedges.size()), static_cast<int>(std::ceil(angle / (2 * pi)))) << name << " cone " << w;
+    for(double a : wedges)
+      EXPECT_LE(a * angle / total, 0.9 * 2 * pi + 1e-9) << name << " cone " << w << ", " << wedges.size() << " wedges";
+  }
+  if(index.genus() == 0) // still a tree
+  {
+    const auto degree = ICM::internal::seam_degrees(index, result.is_seam);
+    EXPECT_EQ(result.number_of_seam_edges + 1,
+              static_cast<int>(std::count_if(degree.begin(), degree.end(), [](int d) { return d > 0; })));
+  }
+}
+
+TEST(CutGraph, ConesWiderThanAFullTurnGetSeamsThroughThem)
+{
+  expect_wedges_below_a_full_turn("sphere966.off", 6, {-1.5 * pi, -3.2 * pi});
+  expect_wedges_below_a_full_turn("eight.off", 6, {-2.5 * pi});
+}
+
+TEST(CutGraph, SeamCountsForAConeAngle)
+{
+  using ICM::internal::cutting::least_seam_degree;
+  EXPECT_EQ(least_seam_degree(std::nan("")), 1);
+  EXPECT_EQ(least_seam_degree(1.0), 1);
+  EXPECT_EQ(least_seam_degree(0.0), 1);
+  EXPECT_EQ(least_seam_degree(-0.1), 2);      // just above 2 pi
+  EXPECT_EQ(least_seam_degree(-2 * pi), 2);   // 4 pi: two wedges of 2 pi
+  EXPECT_EQ(least_seam_degree(-2.1 * pi), 3); // above 4 pi
 }
 
 // --- user seams ------------------------------------------------------------------------

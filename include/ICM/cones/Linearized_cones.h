@@ -154,6 +154,16 @@ public:
   /// u - u0 of the linearized optimum with the cones so far, per vertex.
   Eigen::VectorXd solve() const { return solve_with_cones(b_, sum_b_, x_); }
 
+  /// The linearized curvature 2 pi - angle of each cone, in the order added: the point
+  /// source that holds u = 0 there, since K0 + Delta u vanishes at every other free vertex.
+  /// They sum to 2 pi chi minus the border's share.
+  Eigen::VectorXd cone_curvatures() const
+  {
+    Eigen::VectorXd lambda;
+    cone_sources(sum_b_, x_, lambda);
+    return lambda;
+  }
+
   /// The change of the optimum per unit of curvature taken out at vertex `v` with the cones
   /// so far held at u = 0: a new cone at v moves u by -u_v / h_v(v) times this h.
   Eigen::VectorXd unit_response(int v) const
@@ -183,7 +193,27 @@ private:
   Eigen::VectorXd solve_with_cones(const Eigen::VectorXd& b, double b_sum, const Eigen::VectorXd& x) const
   {
     const int k = static_cast<int>(cones_.size());
-    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(k);
+    Eigen::VectorXd lambda;
+    const double constant = cone_sources(b_sum, x, lambda);
+    Eigen::VectorXd source = b;
+    for(int t = 0; t < k; ++t)
+      if(laplacian_->free_index(cones_[t]) >= 0)
+        source[laplacian_->free_index(cones_[t])] += lambda[t];
+    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(source)) : x;
+    Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), constant);
+    for(int i = 0; i < laplacian_->size(); ++i)
+      u[laplacian_->vertex(i)] += free_u[i];
+    for(int v : cones_)
+      u[v] = 0; // exactly, not to the solve's rounding
+    return u;
+  }
+
+  /// The point sources `lambda` at the cones that hold u = 0 there (and, pinned, the
+  /// constant, returned).
+  double cone_sources(double b_sum, const Eigen::VectorXd& x, Eigen::VectorXd& lambda) const
+  {
+    const int k = static_cast<int>(cones_.size());
+    lambda = Eigen::VectorXd::Zero(k);
     double constant = 0;
     if(!pinned_ && k > 0)
     {
@@ -208,17 +238,7 @@ private:
       lambda = solution.head(k);
       constant = solution[k];
     }
-    Eigen::VectorXd source = b;
-    for(int t = 0; t < k; ++t)
-      if(laplacian_->free_index(cones_[t]) >= 0)
-        source[laplacian_->free_index(cones_[t])] += lambda[t];
-    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(source)) : x;
-    Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), constant);
-    for(int i = 0; i < laplacian_->size(); ++i)
-      u[laplacian_->vertex(i)] += free_u[i];
-    for(int v : cones_)
-      u[v] = 0; // exactly, not to the solve's rounding
-    return u;
+    return constant;
   }
 
   double value_at(const Eigen::VectorXd& free_values, int v) const

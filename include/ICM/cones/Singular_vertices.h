@@ -85,7 +85,11 @@ struct Cone_selection
 {
   std::vector<int> cones;            ///< interior cone vertices, in the order added
   std::vector<double> max_log_scale; ///< max_N |u - u0| before each cone and at the end
-  std::string message;               ///< empty, or why a solve failed
+  /// The linearized placement's prediction of each cone's curvature 2 pi - angle, same order
+  /// as `cones` (empty from the exact placement). A negative one is a cone of angle above
+  /// 2 pi, which the cut should pass through rather than end at (`Cut_graph_options`).
+  std::vector<double> curvatures;
+  std::string message; ///< empty, or why a solve failed
   bool ok() const { return message.empty(); }
 };
 
@@ -220,6 +224,9 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
     if(peaks.empty() || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
     {
       move_cones_to_the_largest_scale(problem, index, user_cones, options.sweeps, is_singular, selection);
+      const Eigen::VectorXd k = problem.cone_curvatures();
+      for(int v : selection.cones) // the seeds were fixed from the start: unknown
+        selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
       return selection;
     }
     int best = peaks[0];

@@ -181,9 +181,11 @@ std::vector<int> cone_seeds(const Mesh_index& index, const Circle_packing_metric
 /// Automatic cones, where the surface wants them: greedy placement from `cone_seeds`, in the
 /// class the optimum is computed in (cones placed by the circle packing's conformal factor
 /// serve the default metric worse: doc/benchmarks.md), then in the circle packing's.
+/// `expected_curvature` receives, at each cone placed, the curvature the placement predicts
+/// for it (NaN when it predicts none).
 template <class Metric, class Solver>
 Status place_automatic_cones(const Mesh_index& index, const Surface_parameterization_options& options,
-                             std::vector<char>& is_singular)
+                             std::vector<char>& is_singular, std::vector<double>& expected_curvature)
 {
   const Circle_packing_metric packing(index);
   const Metric metric = make_metric<Metric>(index, {});
@@ -197,17 +199,25 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
     selection = greedy_cones<Solver>(index, packing, seeds, cones);
   if(!selection.ok())
     return Status::failure(CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, selection.message);
-  for(int v : selection.cones)
+  for(std::size_t i = 0; i < selection.cones.size(); ++i)
+  {
+    const int v = selection.cones[i];
     is_singular[v] = 1;
+    if(i < selection.curvatures.size() && std::isnan(expected_curvature[v]))
+      expected_curvature[v] = selection.curvatures[i];
+  }
   return Status::success();
 }
 
 /// The cut: through every interior singular vertex that will carry curvature (the one free
 /// vertex of a torus carries none), made before the optimum so that a metric with its own
-/// triangulation keeps the seams as edges. User seams are the cut as given.
+/// triangulation keeps the seams as edges, and through (not to) the cones expected to take
+/// an angle above 2 pi (`expected_curvature`: the prescribed or predicted curvature, NaN
+/// where unknown). User seams are the cut as given.
 inline Status cut_component(const Mesh_index& index, const std::vector<char>& is_singular,
-                            const std::vector<double>& prescribed, const std::vector<char>& user_seams,
-                            Chart_report& chart, std::vector<char>& seams, Cut_mesh& cut)
+                            const std::vector<double>& prescribed, const std::vector<double>& expected_curvature,
+                            const std::vector<char>& user_seams, Chart_report& chart, std::vector<char>& seams,
+                            Cut_mesh& cut)
 {
   const int nv = index.number_of_vertices();
   std::vector<char> is_cone(nv, 0);
@@ -219,8 +229,10 @@ inline Status cut_component(const Mesh_index& index, const std::vector<char>& is
   }
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() == 0 && interior_singular == 1)
     std::fill(is_cone.begin(), is_cone.end(), 0);
+  Cut_graph_options options;
+  options.cone_curvatures = expected_curvature;
   Cut_graph_result graph =
-    user_seams.empty() ? cut_graph(index, is_cone) : cut_graph_from_seams(index, user_seams, is_cone);
+    user_seams.empty() ? cut_graph(index, is_cone, options) : cut_graph_from_seams(index, user_seams, is_cone);
   if(!graph.ok())
     return graph.status;
   chart.seam_edges = graph.number_of_seam_edges;
@@ -307,8 +319,10 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   std::vector<char> is_singular;
   if(const Status status = user_singular_set(index, is_user_cone, prescribed, user_seams, is_singular); !status.ok())
     return status;
+  std::vector<double> expected_curvature = prescribed;
   if(options.automatic_cones && options.cones.max_cones > 0 && user_seams.empty())
-    if(const Status status = place_automatic_cones<Metric, Solver>(index, options, is_singular); !status.ok())
+    if(const Status status = place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature);
+       !status.ok())
       return status;
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() > 0 &&
      std::count(is_singular.begin(), is_singular.end(), 1) < 2)
@@ -318,7 +332,8 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   progress("cut", 0.35);
   t = Clock::now();
   Chart_problem problem = singular_set_problem(index, is_singular, prescribed);
-  if(const Status status = cut_component(index, is_singular, prescribed, user_seams, chart, problem.seams, cut);
+  if(const Status status =
+       cut_component(index, is_singular, prescribed, expected_curvature, user_seams, chart, problem.seams, cut);
      !status.ok())
     return status;
   problem.cut = &cut;
