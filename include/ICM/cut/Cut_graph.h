@@ -47,7 +47,8 @@ struct Cut_graph_options
   /// Per vertex, the curvature 2 pi - angle a cone is expected to take (NaN or empty:
   /// unknown). A cone of angle above 2 pi where a seam ends lays its neighbourhood over
   /// itself in the layout (each side of the cut at a cone is one wedge, and a wedge wider
-  /// than 2 pi overlaps itself), so the cut passes ceil(angle / 2 pi) seams through it.
+  /// than 2 pi overlaps itself), so the cut passes seams through it until no wedge would
+  /// be wider than 0.9 of 2 pi, at least ceil(angle / 2 pi) of them.
   std::vector<double> cone_curvatures;
 };
 
@@ -375,9 +376,8 @@ struct Path_search
 /// `is_target` admits, which it returns (-1: none reachable). `search.parent_edge` then
 /// leads back from it to a source, and on to the source's first edge.
 template <class Usable, class Passable, class Target>
-int nearest_target(const Mesh_index& index, const Surface_graph& graph,
-                   const std::vector<std::tuple<int, double, int>>& sources, const Usable& usable,
-                   const Passable& passable, const Target& is_target, Path_search& search)
+int nearest_target(const Surface_graph& graph, const std::vector<std::tuple<int, double, int>>& sources,
+                   const Usable& usable, const Passable& passable, const Target& is_target, Path_search& search)
 {
   search.reset();
   using Entry = std::pair<double, int>;
@@ -434,7 +434,7 @@ bool try_seam_through(const Mesh_index& index, const Surface_graph& graph, const
   };
   const auto on_seam_off_own = [&](int v) { return degree[v] > 0 && !own[v] && !index.is_boundary_vertex[v]; };
   const int x = nearest_target(
-    index, graph, starts, [&](int e) { return !is_seam[e] && !is_surface_border_edge(index, e); },
+    graph, starts, [&](int e) { return !is_seam[e] && !is_surface_border_edge(index, e); },
     [&](int v) { return v != w && degree[v] == 0 && !index.is_boundary_vertex[v]; }, on_seam_off_own, search);
   if(x < 0)
     return false;
@@ -452,7 +452,7 @@ bool try_seam_through(const Mesh_index& index, const Surface_graph& graph, const
     is_new[e] = 1;
   const auto on_cut = [&](int e) { return !is_new[e] && (is_seam[e] || is_surface_border_edge(index, e)); };
   nearest_target(
-    index, graph, {{x, 0.0, -1}}, on_cut, [](int) { return true; }, [&](int v) { return v == w; }, search);
+    graph, {{x, 0.0, -1}}, on_cut, [](int) { return true; }, [&](int v) { return v == w; }, search);
   const std::vector<int> cycle = path_edges(index, search, w, x);
   for(int e : added)
     is_new[e] = 0;
