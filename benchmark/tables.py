@@ -428,6 +428,44 @@ def section_surfaces(data):
     return "\n".join(out)
 
 
+CONES_PLOT = os.path.join(ROOT, "doc", "figures", "cones.svg")
+
+
+def plot_cones(rows, path):
+    """ICM's eq. 8 and charts against the cone count, one line per mesh (matplotlib; skipped
+    with a note when it is missing). Returns the Markdown that shows it, or ''."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("tables: matplotlib is missing (apt-get install python3-matplotlib); "
+              f"{relative(path)} not redrawn", file=sys.stderr)
+        return ""
+    methods = [f"icm_cones_{n}" for n in CONE_COUNTS]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    for mesh, group in by_mesh(rows, methods):
+        ok = [r for r in group if r["status"].startswith("ok")]
+        counts = [CONE_COUNTS[methods.index(r["method"])] for r in ok]
+        name = os.path.splitext(mesh)[0]
+        left.plot(counts, [r["log_area_distortion"] for r in ok], marker="o", label=name)
+        right.plot(counts, [r["charts"] for r in ok], marker="o", label=name)
+    for axes, label in ((left, "log area distortion (eq. 8)"), (right, "charts")):
+        axes.set_xscale("log", base=2)
+        axes.set_xticks(CONE_COUNTS)
+        axes.set_xticklabels([str(n) for n in CONE_COUNTS])
+        axes.set_xlabel("cones")
+        axes.set_ylabel(label)
+        axes.grid(True, which="both", alpha=0.3)
+    left.set_yscale("log")
+    right.legend(fontsize="small", loc="upper left")
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    fig.savefig(path, metadata={"Date": None})  # no date: the file changes only with the data
+    plt.close(fig)
+    return f"![area distortion and charts against the cone count]({os.path.relpath(path, os.path.join(ROOT, 'doc'))})"
+
+
 def section_cones(data):
     _, rows = data["cones"]
     methods = CONE_METHODS.split(",")
@@ -449,7 +487,8 @@ def section_cones(data):
                          f'{num(r.get("seam_length"), 3)} / {sec(r.get("seconds"))}' +
                          (f' ({integer(r.get("cones"))})' if m == "icm" else ""))
         out.append("| " + " | ".join([mesh, str(any_row["faces"]), topo] + cells) + " |")
-    return "\n".join(out)
+    figure = plot_cones(rows, CONES_PLOT)
+    return "\n".join(out) + ("\n\n" + figure if figure else "")
 
 
 def section_surface_energies(data):
