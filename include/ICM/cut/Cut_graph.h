@@ -422,6 +422,13 @@ inline std::vector<int> path_edges(const Mesh_index& index, const Path_search& s
   return edges;
 }
 
+/// Where a stretch of seam ends: a vertex whose seam degree is not 2, on the border, or a cone.
+inline bool is_junction(const Mesh_index& index, const std::vector<char>& is_cone, const std::vector<int>& degree,
+                        int v)
+{
+  return degree[v] != 2 || index.is_boundary_vertex[v] || (!is_cone.empty() && is_cone[v]);
+}
+
 /// One try of `add_seam_through` to the nearest seam vertex not marked `own`.
 template <class StillFine>
 bool try_seam_through(const Mesh_index& index, const Surface_graph& graph, const std::vector<char>& is_cone, int w,
@@ -429,9 +436,7 @@ bool try_seam_through(const Mesh_index& index, const Surface_graph& graph, const
                       std::vector<char>& own, std::vector<int>& own_vertices, std::vector<char>& is_seam,
                       std::vector<int>& degree, Path_search& search)
 {
-  const auto important = [&](int v) {
-    return degree[v] != 2 || index.is_boundary_vertex[v] || (!is_cone.empty() && is_cone[v]);
-  };
+  const auto important = [&](int v) { return is_junction(index, is_cone, degree, v); };
   const auto on_seam_off_own = [&](int v) { return degree[v] > 0 && !own[v] && !index.is_boundary_vertex[v]; };
   const int x = nearest_target(
     graph, starts, [&](int e) { return !is_seam[e] && !is_surface_border_edge(index, e); },
@@ -532,9 +537,7 @@ bool add_seam_through(const Mesh_index& index, const Surface_graph& graph, const
                       const std::vector<std::tuple<int, double, int>>& starts, const StillFine& still_fine,
                       std::vector<char>& is_seam, std::vector<int>& degree, Path_search& search)
 {
-  const auto important = [&](int v) {
-    return degree[v] != 2 || index.is_boundary_vertex[v] || (!is_cone.empty() && is_cone[v]);
-  };
+  const auto important = [&](int v) { return is_junction(index, is_cone, degree, v); };
   // The cone's own branches, up to the first vertex where they meet others: a path ending
   // there would close a cycle through the cone alone.
   std::vector<char>& own = search.vertex_mark;
