@@ -127,6 +127,18 @@ void BM_free_boundary_optimum(benchmark::State& state)
   set_faces(state, f);
 }
 
+/// The one nested dissection of a mesh (below the threshold: nothing to do).
+void BM_elimination_order(benchmark::State& state)
+{
+  ICM::internal::Mesh_index index = fixture(static_cast<int>(state.range(0))).index;
+  for(auto _ : state)
+  {
+    ICM::internal::order_vertices_for_elimination(index);
+    benchmark::DoNotOptimize(index.elimination_rank.data());
+  }
+  state.counters["faces"] = index.number_of_faces();
+}
+
 void BM_layout(benchmark::State& state)
 {
   const Fixture& f = fixture(static_cast<int>(state.range(0)));
@@ -161,6 +173,10 @@ BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Cholmod_solver)->DenseRange(0,
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Nested_dissection_solver)
   ->DenseRange(0, 4)
   ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Preordered_cholmod_solver)
+  ->DenseRange(0, 4)
+  ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_elimination_order)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 #endif
 BENCHMARK(BM_newton_step)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_free_boundary_optimum)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

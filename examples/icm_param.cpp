@@ -446,7 +446,7 @@ struct Run_figures
   std::size_t seam_edges = 0;
   double seam_length = 0; ///< over the square root of the 3D area
   double curvature_error = 0, length_error = 0, seam_error = 0;
-  std::string metrics, fallbacks, layout = "propagation";
+  std::string metrics, fallbacks, layout;
   double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_parameterize = 0;
   std::string energy = ICM::Curvature_entropy::name;
   /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
@@ -495,6 +495,8 @@ struct Run_figures
       seam_error = std::max(seam_error, c.seam_length_error);
       if(metrics.find(c.metric) == std::string::npos)
         metrics += (metrics.empty() ? "" : ",") + c.metric;
+      if(layout.find(c.layout) == std::string::npos)
+        layout += (layout.empty() ? "" : ",") + c.layout;
       if(!c.fallback_reason.empty() && fallbacks.empty())
         fallbacks = c.fallback_reason;
     }

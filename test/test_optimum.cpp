@@ -6,6 +6,7 @@
 // I's eq. 8 without flipped faces on the shared disks.
 
 #include <ICM/cones/Singular_vertices.h>
+#include <ICM/cut/Cut_mesh.h>
 #include <ICM/Inverse_curvature_map_parameterizer_3.h>
 #include <ICM/measures/Distortion.h>
 #include <ICM/metrics/Circle_packing_metric.h>
@@ -24,6 +25,9 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <CGAL/boost/graph/io.h>
+#include <CGAL/subdivision_method_3.h>
+
+#include <Eigen/Eigenvalues>
 
 #include <gtest/gtest.h>
 
@@ -639,10 +643,79 @@ TEST(OptimalMetric, CholmodAndSimplicialSolversAgree)
 
   // The default picks by size: three_peaks is far below the nested dissection threshold.
   ICM::Dynamic_laplacian<ICM::Size_adaptive_solver> small(index, icm_test::interior_of(index));
-  EXPECT_LT(small.size(), ICM::Size_adaptive_solver::nested_dissection_min_unknowns);
+  EXPECT_LT(small.size(), ICM::nested_dissection_min_vertices);
   ICM::Size_adaptive_solver solver;
   solver.analyzePattern(small.matrix());
-  EXPECT_FALSE(solver.uses_nested_dissection());
+  EXPECT_FALSE(solver.uses_cholmod());
+}
+
+/// three_peaks after two steps of Loop subdivision: 29k vertices, above the threshold.
+ICM::internal::Mesh_index subdivided_three_peaks()
+{
+  CGAL::Surface_mesh<CGAL::Simple_cartesian<double>::Point_3> mesh;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(icm_test::data_path("three_peaks.off"), mesh));
+  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(2));
+  ICM::internal::Mesh_index index;
+  std::vector<decltype(mesh)::Vertex_index> vertices;
+  EXPECT_TRUE(
+    ICM::internal::index_mesh(mesh, *faces(mesh).begin(), get(CGAL::vertex_point, mesh), index, vertices).ok());
+  return index;
+}
+
+TEST(OptimalMetric, LargeMeshesShareOneNestedDissectionOrder)
+{
+  ICM::internal::Mesh_index ordered = subdivided_three_peaks();
+  const ICM::internal::Mesh_index own_orders = ordered; // every Laplacian orders its own unknowns
+  ASSERT_GE(ordered.number_of_vertices(), ICM::nested_dissection_min_vertices);
+  ICM::internal::order_vertices_for_elimination_in<ICM::Intrinsic_delaunay_metric>(ordered);
+  std::vector<int> rank = ordered.elimination_rank;
+  std::sort(rank.begin(), rank.end());
+  for(int v = 0; v < ordered.number_of_vertices(); ++v)
+    ASSERT_EQ(rank[v], v) << "not a permutation";
+
+  // The intrinsic triangulation keeps the order, the cut's wedges are ranked by their vertex.
+  const ICM::Intrinsic_delaunay_metric metric(ordered);
+  EXPECT_EQ(metric.triangulation().elimination_rank, ordered.elimination_rank);
+  const ICM::Cut_mesh uncut = ICM::cut_mesh(ordered, std::vector<char>(ordered.number_of_edges(), 0));
+  ASSERT_TRUE(uncut.ok()) << uncut.status.message;
+  EXPECT_EQ(uncut.disk.elimination_rank, ordered.elimination_rank);
+
+  // CHOLMOD in that order and Eigen in AMD order reach the same optimum in the same steps.
+  const std::vector<char> singular = ICM::boundary_singular_set(ordered);
+  Eigen::VectorXd u_shared, u_own;
+  const ICM::Newton_report a =
+    ICM::free_boundary_optimum<ICM::Default_sparse_solver>(ordered, metric, singular, u_shared);
+  const ICM::Newton_report b = ICM::free_boundary_optimum<ICM::Simplicial_solver>(
+    own_orders, ICM::Intrinsic_delaunay_metric(own_orders), singular, u_own);
+  ASSERT_TRUE(a.converged) << a.message;
+  ASSERT_TRUE(b.converged) << b.message;
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_LT((u_shared - u_own).cwiseAbs().maxCoeff(), 1e-9);
+  ICM::Dynamic_laplacian<ICM::Size_adaptive_solver> large(metric.triangulation(), icm_test::interior_of(ordered));
+  ICM::Size_adaptive_solver solver;
+  solver.analyzePattern(large.matrix());
+  EXPECT_TRUE(solver.uses_cholmod());
+}
+
+TEST(OptimalMetric, PreorderedCholmodFactorizesAnIndefiniteLaplacian)
+{
+  // A negative weight (a metric that is not Delaunay) can make the Laplacian indefinite:
+  // LL^T fails there and LDL^T solves it.
+  const ICM::internal::Mesh_index index = icm_test::index_file("nefertiti.off");
+  ICM::Dynamic_laplacian<ICM::Preordered_cholmod_solver> laplacian(index, icm_test::interior_of(index));
+  std::vector<double> w(index.number_of_edges(), 1.0);
+  for(int e = 0; e < index.number_of_edges(); e += 3)
+    w[e] = -0.3; // 8 negative eigenvalues; -1 would zero whole rows
+  laplacian.assemble(w);
+  const ICM::Sparse_matrix full = laplacian.matrix().selfadjointView<Eigen::Upper>();
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(full);
+  const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues();
+  ASSERT_LT(eigenvalues.minCoeff(), 0.0) << "the test needs an indefinite matrix";
+  ASSERT_GT(eigenvalues.cwiseAbs().minCoeff(), 1e-4) << "and a regular one";
+  ASSERT_TRUE(laplacian.factorize());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(laplacian.size(), -1.0, 2.0);
+  const Eigen::VectorXd x = laplacian.solve(b);
+  EXPECT_LT((dense * x - b).norm(), 1e-9 * b.norm());
 }
 #endif
 

@@ -165,6 +165,7 @@ public:
     run.report.seconds_index = run.lap();
     if(!indexed.ok())
       return run.fail(indexed.code, indexed.message);
+    internal::order_vertices_for_elimination_in<Metric>(index); // once for every Laplacian of the run
     const Border_target border = border_target(mesh, bhd, index, vertices, vimap);
     if(!border.ok())
       return run.fail(border.status.code, border.status.message);

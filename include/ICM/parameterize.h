@@ -151,6 +151,7 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
       return finish(indexed.code, "component " + std::to_string(c) + ": " + indexed.message +
                                     (components > 1 ? internal::too_small_beside_the_rest(mesh, seeds[c], normalisation)
                                                     : std::string()));
+    internal::order_vertices_for_elimination_in<Metric>(index); // once for every Laplacian of the component
     std::vector<char> is_user_cone, component_seams;
     std::vector<double> prescribed;
     internal::component_cones_and_seams(mesh, index, vertices, user_cones, is_user_seam, !user_seams.empty(),

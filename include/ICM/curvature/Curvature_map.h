@@ -130,7 +130,8 @@ public:
     return angles;
   }
 
-private:
+  /// Angles and Laplacian weights of face f at the u of the last `evaluate` or
+  /// `compute_lengths`.
   Face_geometry face_geometry(int f) const
   {
     const std::array<int, 3>& v = mesh_index().faces[f];
@@ -139,6 +140,7 @@ private:
                                  {lengths_[e[0]], lengths_[e[1]], lengths_[e[2]]});
   }
 
+private:
   const internal::Mesh_index& index_;
   Metric metric_;
   std::vector<double> radii_;

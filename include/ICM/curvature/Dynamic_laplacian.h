@@ -7,15 +7,19 @@
 // SimplicialLDLT factorizes it in place (from a lower triangle it would copy and transpose
 // the matrix at every factorization and analysis) and CHOLMOD reads either.
 //
-// The unknowns are numbered in a fill-reducing (AMD) order computed once from the first
-// pattern. A metric that flips its triangulation changes a few entries per Newton step;
-// the order stays good for them, so re-analysing after flips costs only the elimination
-// tree; a fresh AMD analysis after each flipping step was a large share of Newton's time
-// (chosen by measurement; the parameterizers' times are in doc/benchmarks.md, Disks).
+// The unknowns are numbered in a fill-reducing order once: a large mesh's one nested
+// dissection of its vertices (`order_vertices_for_elimination`), shared by every Laplacian
+// of the run whatever its free set (the cones' solves, Newton's, the layout's; restricting
+// an order to a subset of the unknowns never adds fill), else an AMD order of the first
+// pattern. A metric that flips its triangulation changes a few entries per Newton step; the
+// order stays good for them, so re-analysing after flips costs only the elimination tree. A
+// fresh ordering at each analysis was a large share of the run (on a million faces four
+// nested dissections took longer than Newton's factorizations; doc/benchmarks.md, Scaling).
 
 #ifndef ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
 #define ICM_CURVATURE_DYNAMIC_LAPLACIAN_H
 
+#include <ICM/internal/Elimination_order.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>
@@ -34,10 +38,9 @@ namespace ICM {
 
 using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
-/// Eigen's simplicial LDL^T, in the AMD order `Dynamic_laplacian` numbers its unknowns in:
-/// always available, and the fastest choice for small and medium meshes (ahead of CHOLMOD's
-/// supernodal LL^T; benchmark/kernels times both) because mesh Laplacians have small
-/// supernodes.
+/// Eigen's simplicial LDL^T, in the order `Dynamic_laplacian` numbers its unknowns in:
+/// always available, and the fastest choice for small meshes (ahead of CHOLMOD's supernodal
+/// LL^T; benchmark/kernels times both) because their Laplacians have small supernodes.
 ///
 /// The analysis reads the matrix in place: Eigen 3.4 recognises "no ordering" only as
 /// `NaturalOrdering<Eigen::Index>`, which does not compile with int indices, and otherwise
@@ -59,11 +62,8 @@ public:
 /// CHOLMOD's supernodal LL^T with its default ordering (SuiteSparse).
 using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Upper>;
 
-/// CHOLMOD's simplicial LDL^T after a nested dissection ordering (NESDIS). AMD's fill grows
-/// badly on large planar-like graphs: on a million faces a numeric factorization after nested
-/// dissection takes a fraction of AMD's, but the dissection's analysis (done once) pays off
-/// only from about 10^5 unknowns (chosen by measurement, one thread: doc/benchmarks.md,
-/// Scaling).
+/// CHOLMOD's simplicial LDL^T after a nested dissection ordering of its own (NESDIS),
+/// computed at every analysis.
 class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Upper>
 {
 public:
@@ -75,48 +75,103 @@ public:
   }
 };
 
-/// The default when SuiteSparse is present: `Simplicial_solver` below
-/// `nested_dissection_min_unknowns`, `Nested_dissection_solver` from there on (one
-/// analysis and six factorizations, the cost of a parameterization, were timed for both
-/// solvers across sizes; the switch is near where they cross: doc/benchmarks.md, Scaling).
+/// CHOLMOD on a matrix already numbered in a fill-reducing order (the analysis keeps it: it
+/// is only the elimination tree, the column counts and the supernodes, a fraction of a
+/// factorization). CHOLMOD picks supernodal LL^T, which does its work in BLAS, or simplicial
+/// LDL^T by the factor's flops per entry: supernodal from 100, where it overtook the
+/// simplicial factorization on OpenBLAS (lion-head refined, 33k to 533k unknowns: 77 flops
+/// per entry simplicial 0.036 s against 0.044 s; 128 per entry 0.27 s against 0.22 s; 222 per
+/// entry 2.2 s against 0.9 s; CHOLMOD's own switch is at 40). A Laplacian with a negative
+/// weight (a metric that is not Delaunay) may be indefinite, which CHOLMOD refuses in LL^T and
+/// in LDL^T alike: Eigen's LDL^T (`Simplicial_solver`, in the same order) then takes over
+/// until the next analysis.
+class Preordered_cholmod_solver
+{
+public:
+  Preordered_cholmod_solver()
+  {
+    cholmod_.setMode(Eigen::CholmodAuto);
+    cholmod_.cholmod().nmethods = 1;
+    cholmod_.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    cholmod_.cholmod().supernodal_switch = 100;
+    cholmod_.cholmod().print = 0; // an indefinite matrix is handled here, not printed
+  }
+  void analyzePattern(const Sparse_matrix& matrix)
+  {
+    cholmod_.analyzePattern(matrix);
+    use_ldlt_ = false;
+    ldlt_analysed_ = false;
+  }
+  void factorize(const Sparse_matrix& matrix)
+  {
+    if(!use_ldlt_)
+    {
+      cholmod_.factorize(matrix);
+      if(cholmod_.info() == Eigen::Success)
+        return;
+      use_ldlt_ = true;
+    }
+    if(!ldlt_analysed_)
+    {
+      ldlt_.analyzePattern(matrix);
+      ldlt_analysed_ = true;
+    }
+    ldlt_.factorize(matrix);
+  }
+  Eigen::ComputationInfo info() const { return use_ldlt_ ? ldlt_.info() : cholmod_.info(); }
+  template <class Rhs>
+  typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
+  {
+    if(use_ldlt_)
+      return ldlt_.solve(b);
+    return cholmod_.solve(b);
+  }
+
+private:
+  Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Upper> cholmod_;
+  Simplicial_solver ldlt_;
+  bool use_ldlt_ = false, ldlt_analysed_ = false;
+};
+
+/// The default when SuiteSparse is present: Eigen's `Simplicial_solver` below
+/// `nested_dissection_min_vertices` unknowns, `Preordered_cholmod_solver` from there on,
+/// where `Dynamic_laplacian` numbers the unknowns by nested dissection.
 class Size_adaptive_solver
 {
 public:
-  static constexpr Eigen::Index nested_dissection_min_unknowns = 75000;
-
   void analyzePattern(const Sparse_matrix& matrix)
   {
-    nested_ = matrix.rows() >= nested_dissection_min_unknowns;
-    if(nested_)
-      nested_dissection_.analyzePattern(matrix);
+    large_ = matrix.rows() >= nested_dissection_min_vertices;
+    if(large_)
+      large_solver_.analyzePattern(matrix);
     else
       simplicial_.analyzePattern(matrix);
   }
   void factorize(const Sparse_matrix& matrix)
   {
-    if(nested_)
-      nested_dissection_.factorize(matrix);
+    if(large_)
+      large_solver_.factorize(matrix);
     else
       simplicial_.factorize(matrix);
   }
-  Eigen::ComputationInfo info() const { return nested_ ? nested_dissection_.info() : simplicial_.info(); }
+  Eigen::ComputationInfo info() const { return large_ ? large_solver_.info() : simplicial_.info(); }
   template <class Rhs>
   typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
   {
-    if(nested_)
-      return nested_dissection_.solve(b);
+    if(large_)
+      return large_solver_.solve(b);
     return simplicial_.solve(b);
   }
-  /// Whether the last `analyzePattern` chose nested dissection.
-  bool uses_nested_dissection() const { return nested_; }
-  /// Entries of the simplicial factor the last analysis predicts; 0 after nested dissection,
-  /// whose order does not go stale the way AMD's does.
-  Eigen::Index factor_nonzeros() const { return nested_ ? 0 : simplicial_.factor_nonzeros(); }
+  /// Whether the last `analyzePattern` chose CHOLMOD.
+  bool uses_cholmod() const { return large_; }
+  /// Entries of the simplicial factor the last analysis predicts; 0 for CHOLMOD, whose
+  /// nested dissection order does not go stale the way AMD's does.
+  Eigen::Index factor_nonzeros() const { return large_ ? 0 : simplicial_.factor_nonzeros(); }
 
 private:
-  bool nested_ = false;
+  bool large_ = false;
   Simplicial_solver simplicial_;
-  Nested_dissection_solver nested_dissection_;
+  Preordered_cholmod_solver large_solver_;
 };
 using Default_sparse_solver = Size_adaptive_solver;
 #else
@@ -149,7 +204,7 @@ public:
         vertex_of_.push_back(v);
       }
     diagonal_slot_.resize(size());
-    order_and_analyze();
+    order_and_analyze(true);
   }
 
   /// Rebuilds the pattern from the edges of the index (after edge flips) and analyses it
@@ -165,7 +220,7 @@ public:
     analyze();
     if(!(factor_nonzeros() > (1.0 + max_fill_growth) * ordered_fill_))
       return false;
-    order_and_analyze();
+    order_and_analyze(false);
     return true;
   }
 
@@ -238,11 +293,13 @@ public:
   }
 
 private:
-  /// Numbers the unknowns in a fill-reducing order of the current edges, then analyses.
-  void order_and_analyze()
+  /// Numbers the unknowns in a fill-reducing order (the mesh's, when it has one and
+  /// `use_mesh_order`, else of the current edges), then analyses.
+  void order_and_analyze(bool use_mesh_order)
   {
-    build_pattern();
-    number_unknowns_in_fill_reducing_order();
+    if(!use_mesh_order || index_.elimination_rank.empty())
+      build_pattern();
+    number_unknowns_in_fill_reducing_order(use_mesh_order);
     build_pattern();
     analyze();
     ordered_fill_ = factor_nonzeros();
@@ -264,19 +321,27 @@ private:
     factorized_ = false;
   }
 
-  /// Renumbers the unknowns by Eigen's AMD ordering of the current pattern.
-  void number_unknowns_in_fill_reducing_order()
+  /// Renumbers the unknowns in the mesh's elimination order when it has one and
+  /// `use_mesh_order`, else in a fill-reducing order of the current pattern.
+  void number_unknowns_in_fill_reducing_order(bool use_mesh_order)
   {
     if(size() == 0)
       return;
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-    Eigen::AMDOrdering<int>()(matrix_, inverse); // orders the pattern of A + A^T
-    const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
+    if(use_mesh_order && !index_.elimination_rank.empty())
+    {
+      const std::vector<int>& rank = index_.elimination_rank;
+      std::sort(vertex_of_.begin(), vertex_of_.end(), [&rank](int a, int b) { return rank[a] < rank[b]; });
+    }
+    else
+    {
+      const std::vector<int> order = internal::fill_reducing_order(matrix_);
+      std::vector<int> vertex_in_order(size());
+      for(int i = 0; i < size(); ++i)
+        vertex_in_order[i] = vertex_of_[order[i]];
+      vertex_of_.swap(vertex_in_order);
+    }
     for(int i = 0; i < size(); ++i)
-      free_of_[vertex_of_[i]] = order.indices()[i];
-    for(int v = 0; v < index_.number_of_vertices(); ++v)
-      if(free_of_[v] >= 0)
-        vertex_of_[free_of_[v]] = v;
+      free_of_[vertex_of_[i]] = i;
   }
 
   /// The upper triangle of the free vertices' adjacency, column by column, and the slot of

@@ -277,6 +277,30 @@ inline Status check_cut_graph(const internal::Mesh_index& index, const std::vect
   return {};
 }
 
+namespace internal {
+namespace cutting {
+
+/// The surface's elimination order carried to its wedges: ranked by their vertex's rank, the
+/// copies of one vertex side by side (empty when the surface has no order).
+inline std::vector<int> wedge_elimination_rank(const Mesh_index& index, const std::vector<int>& surface_vertex)
+{
+  if(index.elimination_rank.empty())
+    return {};
+  const int n = static_cast<int>(surface_vertex.size());
+  std::vector<int> by_rank(n);
+  std::iota(by_rank.begin(), by_rank.end(), 0);
+  std::stable_sort(by_rank.begin(), by_rank.end(), [&](int a, int b) {
+    return index.elimination_rank[surface_vertex[a]] < index.elimination_rank[surface_vertex[b]];
+  });
+  std::vector<int> rank(n);
+  for(int r = 0; r < n; ++r)
+    rank[by_rank[r]] = r;
+  return rank;
+}
+
+} // namespace cutting
+} // namespace internal
+
 /// Cuts `index` open along `is_seam` (per surface edge) into its own Mesh_index: one vertex
 /// per wedge (a vertex of seam-degree d >= 1 inside the surface gets d copies, a border
 /// vertex d + 1), the same faces, and the maps back to surface vertices and edges.
@@ -295,6 +319,7 @@ inline Cut_mesh cut_mesh(const internal::Mesh_index& index, const std::vector<ch
   cut.disk.points.reserve(wedges.surface_vertex.size());
   for(int v : wedges.surface_vertex)
     cut.disk.points.push_back(index.points[v]);
+  cut.disk.elimination_rank = internal::cutting::wedge_elimination_rank(index, wedges.surface_vertex);
   // The disk's edges come from the surface's, not from their endpoints (an intrinsic
   // triangulation may join two vertices by two edges): an edge off the cut is one disk edge,
   // a seam edge one per side.

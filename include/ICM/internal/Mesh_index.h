@@ -56,6 +56,12 @@ struct Mesh_index
   std::vector<char> is_boundary_vertex;
   std::vector<std::vector<int>> boundary_loops;      // vertices in the order of the border halfedges
   std::vector<std::vector<int>> boundary_loop_edges; // edge from loop[i] to loop[i+1]
+  /// Per vertex, its place in one fill-reducing elimination order of the vertex graph
+  /// (`order_vertices_for_elimination`, internal/Elimination_order.h), which every Laplacian
+  /// of the mesh restricted to any vertex subset, of its intrinsic triangulations (copies of
+  /// it) and of its cut (each wedge ranked by its vertex) numbers its unknowns in. Empty: each
+  /// Laplacian orders its own unknowns.
+  std::vector<int> elimination_rank;
 
   int number_of_vertices() const { return static_cast<int>(points.size()); }
   int number_of_faces() const { return static_cast<int>(faces.size()); }
