@@ -447,7 +447,8 @@ struct Run_figures
   double seam_length = 0; ///< over the square root of the 3D area
   double curvature_error = 0, length_error = 0, seam_error = 0;
   std::string metrics, fallbacks, layout;
-  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_parameterize = 0;
+  double seconds_index = 0, seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
+         seconds_parameterize = 0;
   std::string energy = ICM::Curvature_entropy::name;
   /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
   /// at the result, and why it stopped early (empty if it converged).
@@ -465,8 +466,8 @@ struct Run_figures
   /// components: `ICM::energy_summary`).
   Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_, const std::string& energy_)
     : charts(0), components(static_cast<int>(report.charts.size())), overlaps(0), raw_overlaps(0),
-      seam_edges(seam_edges_), seconds_cones(report.seconds_cones), seconds_optimum(report.seconds_optimum),
-      seconds_cut(report.seconds_cut), seconds_layout(report.seconds_layout),
+      seam_edges(seam_edges_), seconds_index(report.seconds_index), seconds_cones(report.seconds_cones),
+      seconds_optimum(report.seconds_optimum), seconds_cut(report.seconds_cut), seconds_layout(report.seconds_layout),
       seconds_parameterize(report.seconds_total), energy(energy_),
       optimized_energy(energy_ != ICM::Curvature_entropy::name)
   {
@@ -507,10 +508,11 @@ struct Run_figures
     : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
       overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
       curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error), metrics(report.metric),
-      fallbacks(report.fallback_reason), layout(report.layout), seconds_optimum(report.seconds_optimum),
-      seconds_layout(report.seconds_layout), seconds_parameterize(report.seconds_total),
-      boundary(report.border_condition), degenerate_faces(report.degenerate_faces),
-      border_iterations(report.border_iterations), circle_deviation(report.circle_deviation)
+      fallbacks(report.fallback_reason), layout(report.layout), seconds_index(report.seconds_index),
+      seconds_optimum(report.seconds_optimum), seconds_layout(report.seconds_layout),
+      seconds_parameterize(report.seconds_total), boundary(report.border_condition),
+      degenerate_faces(report.degenerate_faces), border_iterations(report.border_iterations),
+      circle_deviation(report.circle_deviation)
   {}
 };
 
@@ -576,6 +578,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["faces_reoriented"] = read.reoriented_faces.size();
   j["repairs"] = read.repairs();
   j["seconds_read"] = seconds.read;
+  j["seconds_index"] = t.seconds_index;
   j["seconds_cones"] = t.seconds_cones;
   j["seconds_optimum"] = t.seconds_optimum;
   j["seconds_cut"] = t.seconds_cut;

@@ -162,10 +162,13 @@ public:
     run.report_topology(index);
     run.report.energy = energy_name<Energy>();
     run.report.border_condition = border_.name();
-    run.report.seconds_index = run.lap();
     if(!indexed.ok())
+    {
+      run.report.seconds_index = run.lap();
       return run.fail(indexed.code, indexed.message);
+    }
     internal::order_vertices_for_elimination_in<Metric>(index); // once for every Laplacian of the run
+    run.report.seconds_index = run.lap();
     const Border_target border = border_target(mesh, bhd, index, vertices, vimap);
     if(!border.ok())
       return run.fail(border.status.code, border.status.message);

@@ -124,7 +124,9 @@ struct Surface_parameterization_report
   CGAL::Surface_mesh_parameterization::Error_code status = NOT_RUN;
   std::string message = "not run";  ///< empty on success, else the reason
   std::vector<Chart_report> charts; ///< one per connected component
-  double seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0, seconds_total = 0;
+  /// `seconds_index`: the components read into flat arrays and their elimination orders.
+  double seconds_index = 0, seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
+         seconds_total = 0;
 };
 
 /// An energy's figures over every component of a report: the optimizer's steps summed, E at

@@ -138,6 +138,7 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
     internal::Stage_progress progress{&options.progress, faces_done / total_faces,
                                       static_cast<double>(component_faces[c]) / total_faces};
     faces_done += static_cast<double>(component_faces[c]);
+    const internal::Clock::time_point indexing = internal::Clock::now();
     internal::Mesh_index index;
     std::vector<vertex_descriptor> vertices;
     const Status indexed = internal::index_mesh(mesh, seeds[c], get(CGAL::vertex_point, mesh), index, vertices,
@@ -152,6 +153,7 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
                                     (components > 1 ? internal::too_small_beside_the_rest(mesh, seeds[c], normalisation)
                                                     : std::string()));
     internal::order_vertices_for_elimination_in<Metric>(index); // once for every Laplacian of the component
+    report.seconds_index += internal::seconds_since(indexing);
     std::vector<char> is_user_cone, component_seams;
     std::vector<double> prescribed;
     internal::component_cones_and_seams(mesh, index, vertices, user_cones, is_user_seam, !user_seams.empty(),
