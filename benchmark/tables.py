@@ -669,9 +669,9 @@ def main():
         if s == "scaling":
             series = a.scaling_series
             made = git(["log", "-1", "--format=%h %cs", "--", relative(series)], ROOT)
-            line = ("_Read from `{}`: written by `OMP_NUM_THREADS=1 bash benchmark/scaling.sh` "
-                    "with the code of commit {} (the file's last commit), not remeasured here "
-                    "(it takes hours); rerender with `{}`._").format(
+            line = ("_Read from `{}`: written by `bash benchmark/scaling.sh` (METHODS as in the "
+                    "table) with the code of commit {} (the file's last commit), not remeasured "
+                    "here (it takes long); rerender with `{}`._").format(
                         relative(series), made or "none: not committed", hint)
             body = line + "\n\n" + section_scaling(series)
         else:
