@@ -1,6 +1,8 @@
 // Google Benchmark micro-benchmarks of the numeric kernels at several mesh sizes: the
 // curvature map, Laplacian assembly, numeric factorization, one Newton step, the layouts.
 // Meshes: the bundled disks, and three_peaks refined by Loop subdivision for larger sizes.
+// BM_flat_strip times the whole ICM::parameterize call on 1 x N strips of unit squares and
+// fits its growth in N (Google Benchmark's complexity fit): it must stay linear.
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
@@ -8,6 +10,8 @@
 #include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/optimum/Optimal_metric.h>
 #include <ICM/internal/Mesh_index.h>
+#include <ICM/measures/Distortion.h>
+#include <ICM/parameterize.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
@@ -163,8 +167,40 @@ void BM_layout(benchmark::State& state)
   state.SetLabel(harmonic ? "harmonic" : "propagation");
 }
 
+/// The whole call on a 1 x N rectangle of unit squares (flat: the map is the strip itself).
+void BM_flat_strip(benchmark::State& state)
+{
+  const int n = static_cast<int>(state.range(0));
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> v;
+  for(int i = 0; i <= n; ++i)
+  {
+    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 0, 0)));
+    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 1, 0)));
+  }
+  for(int i = 0; i < n; ++i)
+  {
+    mesh.add_face(v[2 * i], v[2 * i + 2], v[2 * i + 3]);
+    mesh.add_face(v[2 * i], v[2 * i + 3], v[2 * i + 1]);
+  }
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
+  ICM::Surface_parameterization_report report;
+  for(auto _ : state)
+    report = ICM::parameterize(mesh, uv);
+  if(report.status != CGAL::Surface_mesh_parameterization::OK)
+    state.SkipWithError(report.message.c_str());
+  state.SetComplexityN(n);
+  state.counters["faces"] = 2 * n;
+  state.counters["log_area"] = ICM::measure_distortion_corner_uv(mesh, uv).log_area_distortion;
+}
+
 } // namespace
 
+BENCHMARK(BM_flat_strip)
+  ->RangeMultiplier(10)
+  ->Range(1000, 100000)
+  ->Complexity(benchmark::oN)
+  ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_curvature_map)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_laplacian_assembly)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_numeric_factorization, ICM::Simplicial_solver)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);

@@ -19,7 +19,12 @@
 #include <ICM/internal/Box_pairs.h>
 #include <ICM/internal/Exact_predicates.h>
 #include <ICM/metrics/Circle_packing_metric.h>
+#include <ICM/optimum/Chart_solver.h>
 #include <ICM/optimum/Optimal_metric.h>
+#include <ICM/cut/Cut_graph.h>
+#include <ICM/cut/Cut_mesh.h>
+#include <ICM/internal/Surface_component.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
 
 #include <gmpxx.h>
 
@@ -848,6 +853,40 @@ TEST(Layout, PropagationAndHarmonicReproduceTheMetric)
       extent = std::max(extent, std::abs(direct[v][c]));
     }
   EXPECT_LT(largest_difference, 1e-12 * extent);
+}
+
+TEST(Layout, CutChartLaidOutHarmonicallyOrByPropagationReproducesTheMetric)
+{
+  // sphere966 with four cones of free angle, cut through them: both layouts of the cut disk
+  // keep the metric's lengths and give the two sides of every seam one length.
+  const ICM::internal::Mesh_index index = icm_test::index_file("sphere966.off");
+  std::vector<char> is_cone(index.number_of_vertices(), 0);
+  for(int v : {0, 231, 462, 693})
+    is_cone[v] = 1;
+  const std::vector<double> free_angles(index.number_of_vertices(), std::nan(""));
+  ICM::internal::Chart_problem problem = ICM::internal::singular_set_problem(index, is_cone, free_angles);
+  const ICM::Cut_graph_result graph = ICM::cut_graph(index, is_cone);
+  ASSERT_TRUE(graph.ok()) << graph.status.message;
+  const ICM::Cut_mesh cut = ICM::cut_mesh(index, graph.is_seam);
+  ASSERT_TRUE(cut.ok()) << cut.status.message;
+  problem.seams = graph.is_seam;
+  problem.cut = &cut;
+  for(ICM::Layout_method layout : {ICM::Layout_method::Harmonic, ICM::Layout_method::Propagation})
+  {
+    ICM::internal::Chart_method method;
+    method.layout = layout;
+    ICM::Chart_solve_report report;
+    std::vector<ICM::Uv> uv;
+    const ICM::Status status = ICM::internal::solve_chart<ICM::Intrinsic_delaunay_metric, ICM::Default_sparse_solver>(
+      problem, ICM::Chart_options(), method, ICM::Curvature_entropy(), report, uv);
+    ASSERT_TRUE(status.ok()) << status.message;
+    EXPECT_EQ(report.layout, layout == ICM::Layout_method::Harmonic ? "harmonic" : "propagation");
+    EXPECT_EQ(report.metric, std::string("intrinsic-delaunay"));
+    EXPECT_EQ(report.flipped_faces, 0);
+    EXPECT_LT(report.max_layout_length_error, 1e-8);
+    EXPECT_LT(report.seam_length_error, 1e-8);
+    EXPECT_EQ(uv.size(), cut.surface_vertex.size());
+  }
 }
 
 TEST(Layout, EquilateralGridLaysOutAsItself)

@@ -595,28 +595,150 @@ TEST(Surfaces, EnergyKeepsTheUserConesAngles)
   EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
 }
 
-TEST(Surfaces, LongFlatStripMapsToItself)
+/// A strip one quad wide between the polylines `a` and `b` (a_i b_i is rung i), each quad
+/// split in two. Such a strip has no interior vertex, so it is intrinsically flat: its
+/// development is an isometric map.
+Mesh ribbon(const std::vector<Kernel::Point_3>& a, const std::vector<Kernel::Point_3>& b)
 {
-  // A 1 x 2000 rectangle of unit squares: the layout's error estimate overflows some 1200
-  // hops from its root (a 1 x 550 strip used to hang). The map is the strip itself.
-  const int n = 2000;
   Mesh mesh;
-  std::vector<Mesh::Vertex_index> v;
+  std::vector<Mesh::Vertex_index> va, vb;
+  for(std::size_t i = 0; i < a.size(); ++i)
+  {
+    va.push_back(mesh.add_vertex(a[i]));
+    vb.push_back(mesh.add_vertex(b[i]));
+  }
+  for(std::size_t i = 0; i + 1 < a.size(); ++i)
+  {
+    mesh.add_face(va[i], va[i + 1], vb[i + 1]);
+    mesh.add_face(va[i], vb[i + 1], vb[i]);
+  }
+  return mesh;
+}
+
+/// The cells of a 2^order x 2^order grid in the order a Hilbert curve visits them.
+std::vector<std::array<int, 2>> hilbert_cells(int order)
+{
+  const int n = 1 << order;
+  std::vector<std::array<int, 2>> cells;
+  for(int d = 0; d < n * n; ++d)
+  {
+    int x = 0, y = 0;
+    for(int s = 1, t = d; s < n; s *= 2, t /= 4)
+    {
+      const int rx = 1 & (t / 2), ry = 1 & (t ^ rx);
+      if(ry == 0)
+      {
+        if(rx == 1)
+        {
+          x = s - 1 - x;
+          y = s - 1 - y;
+        }
+        std::swap(x, y);
+      }
+      x += s * rx;
+      y += s * ry;
+    }
+    cells.push_back({x, y});
+  }
+  return cells;
+}
+
+/// A planar strip of width `width` centred on the polyline `path` (unit steps along the axes),
+/// each step split in `pieces`: the rungs at a corner run along its bisector (mitred).
+Mesh strip_along(const std::vector<std::array<int, 2>>& path, double width, int pieces)
+{
+  std::vector<Kernel::Point_3> a, b;
+  auto left_normal = [&](std::size_t k) { // of the step from path[k] to path[k + 1]
+    return std::array<double, 2>{double(path[k][1] - path[k + 1][1]), double(path[k + 1][0] - path[k][0])};
+  };
+  for(std::size_t k = 0; k + 1 < path.size(); ++k)
+  {
+    EXPECT_EQ(std::abs(path[k + 1][0] - path[k][0]) + std::abs(path[k + 1][1] - path[k][1]), 1) << "step " << k;
+    for(int piece = 0; piece < pieces; ++piece)
+    {
+      const double t = double(piece) / pieces;
+      std::array<double, 2> m = left_normal(k);
+      if(piece == 0 && k > 0) // the corner's mitre: n_in + n_out over 1 + n_in . n_out
+      {
+        const std::array<double, 2> n_in = left_normal(k - 1), n_out = m;
+        const double scale = 1 / (1 + n_in[0] * n_out[0] + n_in[1] * n_out[1]);
+        m = {(n_in[0] + n_out[0]) * scale, (n_in[1] + n_out[1]) * scale};
+      }
+      const double x = path[k][0] + t * (path[k + 1][0] - path[k][0]);
+      const double y = path[k][1] + t * (path[k + 1][1] - path[k][1]);
+      a.emplace_back(x - width / 2 * m[0], y - width / 2 * m[1], 0);
+      b.emplace_back(x + width / 2 * m[0], y + width / 2 * m[1], 0);
+    }
+  }
+  const std::array<double, 2> m = left_normal(path.size() - 2);
+  a.emplace_back(path.back()[0] - width / 2 * m[0], path.back()[1] - width / 2 * m[1], 0);
+  b.emplace_back(path.back()[0] + width / 2 * m[0], path.back()[1] + width / 2 * m[1], 0);
+  return ribbon(a, b);
+}
+
+/// Checks that `mesh` maps to one chart without cones, isometrically (up to the scale).
+void expect_isometric_single_chart(Mesh mesh, const std::string& what)
+{
+  const Result r = run(mesh, what);
+  ASSERT_EQ(r.report.charts.size(), 1u) << what;
+  EXPECT_TRUE(r.report.charts[0].cones.empty()) << what;
+  EXPECT_EQ(r.report.charts[0].metric, "intrinsic-delaunay") << what;
+  EXPECT_LT(r.measures.log_area_distortion, 1e-12) << what;
+  EXPECT_LT(r.measures.qc_max, 1 + 1e-9) << what;
+}
+
+TEST(Surfaces, FlatStripsOfEveryShapeMapToThemselves)
+{
+  // A strip one quad wide is flat, however it winds: the map is its development. The layout's
+  // error estimate overflows some 1200 hops from its root (a 1 x 550 strip used to hang, and so
+  // did spirals, helices and a Hilbert-curve strip).
+  const int n = 2000; // a 1 x 2000 rectangle of unit squares
+  std::vector<Kernel::Point_3> a, b;
   for(int i = 0; i <= n; ++i)
   {
-    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 0, 0)));
-    v.push_back(mesh.add_vertex(Kernel::Point_3(i, 1, 0)));
+    a.emplace_back(i, 0, 0);
+    b.emplace_back(i, 1, 0);
   }
-  for(int i = 0; i < n; ++i)
+  expect_isometric_single_chart(ribbon(a, b), "1 x 2000 strip");
+
+  // A planar Archimedean spiral of 12 turns, 1 wide and 2 apart: 3072 faces.
+  a.clear();
+  b.clear();
+  for(int i = 0; i <= 12 * 128; ++i)
   {
-    mesh.add_face(v[2 * i], v[2 * i + 2], v[2 * i + 3]);
-    mesh.add_face(v[2 * i], v[2 * i + 3], v[2 * i + 1]);
+    const double angle = 2 * M_PI * i / 128, radius = 3 + 2 * angle / (2 * M_PI);
+    a.emplace_back((radius - 0.5) * std::cos(angle), (radius - 0.5) * std::sin(angle), 0);
+    b.emplace_back((radius + 0.5) * std::cos(angle), (radius + 0.5) * std::sin(angle), 0);
   }
-  const Result r = run(mesh, "strip");
-  ASSERT_EQ(r.report.charts.size(), 1u);
-  EXPECT_TRUE(r.report.charts[0].cones.empty());
-  EXPECT_LT(r.measures.log_area_distortion, 1e-12);
-  EXPECT_LT(r.measures.qc_max, 1 + 1e-9);
+  expect_isometric_single_chart(ribbon(a, b), "12-turn spiral");
+
+  // A helix ribbon of 12 turns on a cylinder of radius 3, 1 wide, climbing 2 per turn.
+  a.clear();
+  b.clear();
+  for(int i = 0; i <= 12 * 64; ++i)
+  {
+    const double angle = 2 * M_PI * i / 64, height = 2 * angle / (2 * M_PI);
+    a.emplace_back(3 * std::cos(angle), 3 * std::sin(angle), height);
+    b.emplace_back(3 * std::cos(angle), 3 * std::sin(angle), height + 1);
+  }
+  expect_isometric_single_chart(ribbon(a, b), "helix ribbon");
+
+  // A strip wound 6 times around a cone of half-angle 30 degrees, 1 wide along the slant,
+  // moving 1.5 up the slant per turn: its development is a spiral in a 3 pi sector.
+  a.clear();
+  b.clear();
+  const double sin_half_angle = 0.5, cos_half_angle = std::sqrt(0.75);
+  for(int i = 0; i <= 6 * 64; ++i)
+  {
+    const double angle = 2 * M_PI * i / 64, slant = 4 + 1.5 * angle / (2 * M_PI);
+    for(double s : {slant, slant + 1})
+      (s == slant ? a : b)
+        .emplace_back(s * sin_half_angle * std::cos(angle), s * sin_half_angle * std::sin(angle), s * cos_half_angle);
+  }
+  expect_isometric_single_chart(ribbon(a, b), "strip wound on a cone");
+
+  // A strip 0.5 wide along the Hilbert curve through 32 x 32 cells: 4092 faces, 512 corners.
+  expect_isometric_single_chart(strip_along(hilbert_cells(5), 0.5, 2), "Hilbert-curve strip");
 }
 
 TEST(Surfaces, HorseGetsConesByDefaultAndLessAreaDistortion)

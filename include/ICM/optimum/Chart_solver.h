@@ -376,6 +376,7 @@ Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, c
   // Harmonic first on a large chart; by propagation first otherwise, and harmonic after all
   // when the propagation misses the metric's lengths: the better of the two is kept.
   const bool harmonic_first = method.harmonic_for(laid.disk.number_of_faces());
+  uv.clear(); // it may hold the layout of a metric that failed
   for(int attempt = 0; attempt < 2; ++attempt)
   {
     const bool harmonic = harmonic_first == (attempt == 0);
