@@ -1153,6 +1153,7 @@ Job icm_job(const Mesh& input, bool remove_overlaps, int exact_cones = -1)
                {"overlap_cut_edges", overlap_cuts},
                {"raw_border_crossings", raw_crossings},
                {"border_crossings", crossings},
+               {"seconds_index", report.seconds_index},
                {"seconds_cones", report.seconds_cones},
                {"seconds_optimum", report.seconds_optimum},
                {"seconds_cut", report.seconds_cut},

@@ -30,6 +30,7 @@
 #endif
 
 #include <algorithm>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -254,24 +255,26 @@ public:
   {
     if(size() == 0)
       return true;
-    solver_.factorize(matrix_);
-    factorized_ = solver_.info() == Eigen::Success;
+    solver_->factorize(matrix_);
+    factorized_ = solver_->info() == Eigen::Success;
     return factorized_;
   }
 
-  /// Whether a numeric factorization (of some earlier assembly) is available.
-  bool has_factorization() const { return factorized_; }
+  /// Whether a numeric factorization of some earlier assembly is available: of this pattern,
+  /// or of the one before the last `rebuild_pattern()` when that kept the unknowns' numbers.
+  bool has_factorization() const { return factorized_ || previous_factorized_; }
 
   /// Solves Delta_FF x = b for right-hand sides given per free unknown, with the last
   /// factorization.
   template <class Rhs>
   typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
   {
-    return solver_.solve(b);
+    return solver_->solve(b);
   }
 
   /// Solves with the matrix as assembled now, using the last factorization — of a nearby
-  /// assembly — as preconditioner of an iterative refinement. When every weight changed by
+  /// assembly, also of the pattern before a few edge flips — as preconditioner of an
+  /// iterative refinement. When every weight changed by
   /// a relative epsilon since that factorization, the error contracts by epsilon per
   /// refinement (a Laplacian with non-negative weights is then within (1 +- epsilon) of the
   /// factorized one in the Loewner order). Returns false when `max_refinements` corrections
@@ -280,11 +283,12 @@ public:
   bool solve_refined(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance = 1e-13,
                      int max_refinements = 6) const
   {
-    x = solver_.solve(b);
+    const SparseSolver& factor = factorized_ ? *solver_ : *previous_;
+    x = factor.solve(b);
     for(int refinement = 0; refinement < max_refinements; ++refinement)
     {
       const typename Rhs::PlainObject correction =
-        solver_.solve(b - matrix_.template selfadjointView<Eigen::Upper>() * x);
+        factor.solve(b - matrix_.template selfadjointView<Eigen::Upper>() * x);
       x += correction;
       if(correction.norm() <= tolerance * x.norm())
         return x.allFinite();
@@ -302,6 +306,7 @@ private:
     number_unknowns_in_fill_reducing_order(use_mesh_order);
     build_pattern();
     analyze();
+    previous_factorized_ = false; // of other numbers
     ordered_fill_ = factor_nonzeros();
   }
 
@@ -309,16 +314,22 @@ private:
   double factor_nonzeros() const
   {
     if constexpr(Reports_fill<SparseSolver>::value)
-      return size() > 0 ? static_cast<double>(solver_.factor_nonzeros()) : 0.0;
+      return size() > 0 ? static_cast<double>(solver_->factor_nonzeros()) : 0.0;
     else
       return 0.0;
   }
 
+  /// A new analysis ends the current factorization; it is kept aside for `solve_refined`,
+  /// since a Newton step near the solution flips a few edges (lion-head Loop x3: 2 of 1.6M)
+  /// and leaves a factorization that still solves the new system in a few refinements.
   void analyze()
   {
-    if(size() > 0)
-      solver_.analyzePattern(matrix_);
+    if(factorized_)
+      std::swap(solver_, previous_);
+    previous_factorized_ = factorized_;
     factorized_ = false;
+    if(size() > 0)
+      solver_->analyzePattern(matrix_);
   }
 
   /// Renumbers the unknowns in the mesh's elimination order when it has one and
@@ -415,8 +426,9 @@ private:
   std::vector<int> edge_slot_;
   std::vector<int> column_start_, next_; // build_pattern's scratch, kept between rebuilds
   std::vector<std::pair<int, int>> entries_;
-  SparseSolver solver_;
-  bool factorized_ = false;
+  std::unique_ptr<SparseSolver> solver_ = std::make_unique<SparseSolver>();
+  std::unique_ptr<SparseSolver> previous_ = std::make_unique<SparseSolver>(); // see analyze()
+  bool factorized_ = false, previous_factorized_ = false;
 };
 
 } // namespace ICM

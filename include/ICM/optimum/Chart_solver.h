@@ -320,10 +320,13 @@ Status lay_out_disk(const Chart_problem& problem, const Chart_method& method,
 /// Laplacian on the disk, whose every edge takes the weights of its own faces (a seam's two
 /// sides one face each). It reproduces the metric to the solver's precision wherever the
 /// metric is flat inside, where the propagation's error grows with the number of faces
-/// between an edge and the root (lion-head refined to 1.07M faces: 1.2e-4).
+/// between an edge and the root (lion-head refined to 1.07M faces: 1.2e-4). `newton`, when
+/// given, is the optimum's Laplacian on the same vertices, edges and free vertices: its last
+/// factorization then solves the layout by refinement.
 template <class Solver, class Metric>
 bool lay_out_cut_harmonically(const Mesh_index& disk, const std::vector<double>& disk_lengths,
-                              const Curvature_map<Metric>& curvature, std::vector<Uv>& uv, std::string& why)
+                              const Curvature_map<Metric>& curvature, std::vector<Uv>& uv, std::string& why,
+                              Dynamic_laplacian<Solver>* newton = nullptr)
 {
   Eigen::VectorXd k(disk.number_of_vertices());
   for(int w = 0; w < disk.number_of_vertices(); ++w)
@@ -338,11 +341,29 @@ bool lay_out_cut_harmonically(const Mesh_index& disk, const std::vector<double>&
       weights[disk.face_edges[f][c]] += face.weight[c];
     }
   }
+  if(newton != nullptr)
+    return layout_harmonic(disk, disk_lengths, k, weights, *newton, uv, why);
   std::vector<char> is_interior(disk.number_of_vertices());
   for(int w = 0; w < disk.number_of_vertices(); ++w)
     is_interior[w] = !disk.is_boundary_vertex[w];
   Dynamic_laplacian<Solver> laplacian(disk, is_interior);
   return layout_harmonic(disk, disk_lengths, k, weights, laplacian, uv, why);
+}
+
+/// Whether `laplacian` (of the triangulation `disk` was cut from) is the harmonic layout's
+/// of `disk`: a cut without seams keeps the numbers of vertices and edges, and the free
+/// vertices must be the interior ones (a free border, not a prescribed one).
+template <class Solver>
+bool is_layout_laplacian_of(const Dynamic_laplacian<Solver>& laplacian, const Mesh_index& triangulation,
+                            const Mesh_index& disk)
+{
+  if(disk.number_of_vertices() != triangulation.number_of_vertices() ||
+     disk.number_of_edges() != triangulation.number_of_edges())
+    return false;
+  for(int v = 0; v < disk.number_of_vertices(); ++v)
+    if((laplacian.free_index(v) >= 0) == static_cast<bool>(disk.is_boundary_vertex[v]))
+      return false;
+  return true;
 }
 
 /// Step 7 on a cut surface: the metric laid out on the cut, both sides of a seam one length.
@@ -353,9 +374,10 @@ bool lay_out_cut_harmonically(const Mesh_index& disk, const std::vector<double>&
 /// sides of its seam edge start there, and moving it would give them different lengths).
 template <class Solver, class Metric>
 Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, const Chart_method& method,
-                   Curvature_map<Metric>& curvature, Chart_solve_report& report, std::vector<Uv>& uv,
+                   Inverse_curvature_map<Solver, Metric>& solver, Chart_solve_report& report, std::vector<Uv>& uv,
                    Layout_check& check)
 {
+  Curvature_map<Metric>& curvature = solver.curvature_map();
   using CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
   const Mesh_index& index = *problem.mesh;
   const Cut_mesh& cut = *problem.cut;
@@ -376,13 +398,15 @@ Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, c
   // Harmonic first on a large chart; by propagation first otherwise, and harmonic after all
   // when the propagation misses the metric's lengths: the better of the two is kept.
   const bool harmonic_first = method.harmonic_for(laid.disk.number_of_faces());
+  Dynamic_laplacian<Solver>* newton =
+    is_layout_laplacian_of(solver.laplacian(), triangulation, laid.disk) ? &solver.laplacian() : nullptr;
   uv.clear(); // it may hold the layout of a metric that failed
   for(int attempt = 0; attempt < 2; ++attempt)
   {
     const bool harmonic = harmonic_first == (attempt == 0);
     std::vector<Uv> candidate;
     std::string why;
-    if(harmonic && !lay_out_cut_harmonically<Solver>(laid.disk, disk_lengths, curvature, candidate, why))
+    if(harmonic && !lay_out_cut_harmonically<Solver>(laid.disk, disk_lengths, curvature, candidate, why, newton))
       continue; // the propagation is always possible
     if(!harmonic)
       candidate = layout_by_propagation(laid.disk, disk_lengths, curvature.face_angles());
@@ -480,7 +504,7 @@ Status solve_chart_in(const Chart_problem& problem, const Chart_options& options
   report.metric_summary = curvature.metric().summary(); // with the flips made on the way
   report_curvature(problem, k, report);
   Layout_check check;
-  status = problem.cut != nullptr ? lay_out_cut<Solver>(problem, options, method, curvature, report, uv, check)
+  status = problem.cut != nullptr ? lay_out_cut(problem, options, method, solver, report, uv, check)
                                   : lay_out_disk(problem, method, solver, k, weights, report, uv, check);
   if(!status.ok())
     return status;
