@@ -22,7 +22,7 @@
 #include <ICM/layout/Layout.h>
 #include <ICM/internal/Mesh_index.h>
 
-#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 
 #include <algorithm>
@@ -49,23 +49,87 @@ namespace overlaps {
 /// Capacities are integers: a maximum flow of floating-point edge lengths is balanced only up
 /// to rounding, which Boost's checks of a flow (exact equalities) refuse.
 using Capacity = long long;
-using Flow_traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
-using Flow_graph = boost::adjacency_list<
-  boost::vecS, boost::vecS, boost::directedS, boost::no_property,
-  boost::property<boost::edge_capacity_t, Capacity,
-                  boost::property<boost::edge_residual_capacity_t, Capacity,
-                                  boost::property<boost::edge_reverse_t, Flow_traits::edge_descriptor>>>>;
+/// The flow network in compressed sparse rows, its arc properties in arrays by arc index: an
+/// `adjacency_list` allocates every arc's properties apart, and at a million faces building
+/// and freeing them took longer than the flow.
+using Flow_graph = boost::compressed_sparse_row_graph<boost::directedS>;
+using Arc = boost::graph_traits<Flow_graph>::edge_descriptor;
 
-/// An arc a -> b of capacity `capacity`, with the zero-capacity reverse arc Boost's maximum
-/// flows keep its residual flow on.
-inline void add_arc(Flow_graph& g, int a, int b, Capacity capacity)
+/// The arcs of a flow network, each with its zero-capacity reverse arc (on which Boost's
+/// maximum flows keep the residual flow), before they are sorted into a `Flow_graph`.
+struct Flow_arcs
 {
-  const auto e = boost::add_edge(a, b, g).first;
-  const auto r = boost::add_edge(b, a, g).first;
-  boost::put(boost::edge_capacity, g, e, capacity);
-  boost::put(boost::edge_capacity, g, r, Capacity(0));
-  boost::put(boost::edge_reverse, g, e, r);
-  boost::put(boost::edge_reverse, g, r, e);
+  std::vector<std::pair<int, int>> ends;
+  std::vector<Capacity> capacity;
+
+  void add(int a, int b, Capacity c)
+  {
+    ends.emplace_back(a, b);
+    capacity.push_back(c);
+    ends.emplace_back(b, a);
+    capacity.push_back(0); // arc 2k + 1 reverses arc 2k
+  }
+};
+
+/// Vertices on the source side of a minimum cut of `arcs` between `s` and `t` (the source's
+/// reach in the residual network; every maximum flow leaves the same one).
+inline std::vector<char> source_side(const Flow_arcs& arcs, int vertices, int s, int t)
+{
+  // Sorted by tail (counting sort): a sorted arc list keeps its order in the graph.
+  const int m = static_cast<int>(arcs.ends.size());
+  std::vector<int> start(vertices + 1, 0), position(m);
+  for(const auto& end : arcs.ends)
+    ++start[end.first + 1];
+  for(int v = 0; v < vertices; ++v)
+    start[v + 1] += start[v];
+  std::vector<int> next(start.begin(), start.end() - 1);
+  std::vector<std::pair<int, int>> sorted(m);
+  for(int i = 0; i < m; ++i)
+  {
+    position[i] = next[arcs.ends[i].first]++;
+    sorted[position[i]] = arcs.ends[i];
+  }
+  const Flow_graph g(boost::edges_are_sorted, sorted.begin(), sorted.end(), static_cast<std::size_t>(vertices));
+  std::vector<Capacity> capacity(m), residual(m);
+  std::vector<Arc> reverse(m);
+  for(int i = 0; i < m; ++i)
+  {
+    const int j = i ^ 1;
+    capacity[position[i]] = arcs.capacity[i];
+    reverse[position[i]] = Arc(arcs.ends[j].first, position[j]);
+  }
+  const auto arc_index = boost::get(boost::edge_index, g);
+  const auto vertex_index = boost::get(boost::vertex_index, g);
+  std::vector<boost::default_color_type> colour(vertices);
+  std::vector<Arc> predecessor(vertices);
+  std::vector<long> distance(vertices);
+  // Boykov-Kolmogorov: on these planar dual graphs 10x faster than push-relabel (horse's
+  // 40k faces: 0.4 s).
+  boost::boykov_kolmogorov_max_flow(g, boost::make_iterator_property_map(capacity.begin(), arc_index),
+                                    boost::make_iterator_property_map(residual.begin(), arc_index),
+                                    boost::make_iterator_property_map(reverse.begin(), arc_index),
+                                    boost::make_iterator_property_map(predecessor.begin(), vertex_index),
+                                    boost::make_iterator_property_map(colour.begin(), vertex_index),
+                                    boost::make_iterator_property_map(distance.begin(), vertex_index), vertex_index,
+                                    static_cast<std::size_t>(s), static_cast<std::size_t>(t));
+  std::vector<char> reached(vertices, 0);
+  std::vector<int> stack{s};
+  reached[s] = 1;
+  while(!stack.empty())
+  {
+    const int a = stack.back();
+    stack.pop_back();
+    for(const Arc arc : boost::make_iterator_range(boost::out_edges(static_cast<std::size_t>(a), g)))
+    {
+      const int b = static_cast<int>(boost::target(arc, g));
+      if(!reached[b] && residual[get(arc_index, arc)] > 0)
+      {
+        reached[b] = 1;
+        stack.push_back(b);
+      }
+    }
+  }
+  return reached;
 }
 
 /// The faces of `piece_faces` on the source side of a minimum cut between `sources` and
@@ -91,53 +155,24 @@ inline std::vector<int> source_side_of_minimum_cut(const Mesh_index& disk, const
     total += edge_length(disk, e);
   }
   // Lengths in units of 2^-40 of their sum: any cut is then at most 2^40 units, and the
-  // preflow's excess (every source arc saturated) stays below 2^62 for up to 2^20 sources.
+  // source arcs' capacities (2^41 + 1 each) sum below 2^62 for up to 2^20 sources.
   const double unit = total > 0 ? std::ldexp(1.0, -40) * total : 1.0;
-  Flow_graph g(n + 2);
+  Flow_arcs arcs;
+  arcs.ends.reserve(4 * dual_edges.size() + 2 * (sources.size() + sinks.size()));
+  arcs.capacity.reserve(arcs.ends.capacity());
   for(int e : dual_edges)
   {
     const int f = node_of_face[disk.edge_faces[e][0]], h = node_of_face[disk.edge_faces[e][1]];
     const Capacity length = std::llround(edge_length(disk, e) / unit);
-    add_arc(g, f, h, length);
-    add_arc(g, h, f, length);
+    arcs.add(f, h, length);
+    arcs.add(h, f, length);
   }
   const Capacity unlimited = (Capacity(1) << 41) + 1;
   for(int f : sources)
-    add_arc(g, s, node_of_face[f], unlimited);
+    arcs.add(s, node_of_face[f], unlimited);
   for(int f : sinks)
-    add_arc(g, node_of_face[f], t, unlimited);
-  // Boykov-Kolmogorov: on these planar dual graphs 10x faster than push-relabel (horse's
-  // 40k faces: 0.4 s), and the same cut, since every maximum flow leaves the source the
-  // same residual reach.
-  std::vector<boost::default_color_type> colour(n + 2);
-  std::vector<Flow_traits::edge_descriptor> predecessor(n + 2);
-  std::vector<long> distance(n + 2);
-  const auto vertex_index = boost::get(boost::vertex_index, g);
-  boost::boykov_kolmogorov_max_flow(
-    g, boost::get(boost::edge_capacity, g), boost::get(boost::edge_residual_capacity, g),
-    boost::get(boost::edge_reverse, g), boost::make_iterator_property_map(predecessor.begin(), vertex_index),
-    boost::make_iterator_property_map(colour.begin(), vertex_index),
-    boost::make_iterator_property_map(distance.begin(), vertex_index), vertex_index, s, t);
-
-  // The source side: what the source still reaches through arcs with residual capacity.
-  const auto residual = boost::get(boost::edge_residual_capacity, g);
-  std::vector<char> reached(n + 2, 0);
-  std::vector<int> stack{s};
-  reached[s] = 1;
-  while(!stack.empty())
-  {
-    const int a = stack.back();
-    stack.pop_back();
-    for(auto arc : boost::make_iterator_range(boost::out_edges(a, g)))
-    {
-      const int b = static_cast<int>(boost::target(arc, g));
-      if(!reached[b] && residual[arc] > 0)
-      {
-        reached[b] = 1;
-        stack.push_back(b);
-      }
-    }
-  }
+    arcs.add(node_of_face[f], t, unlimited);
+  const std::vector<char> reached = source_side(arcs, n + 2, s, t);
   std::vector<int> side;
   for(int i = 0; i < n; ++i)
     if(reached[i])
