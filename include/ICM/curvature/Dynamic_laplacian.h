@@ -30,6 +30,7 @@
 #endif
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <type_traits>
 #include <utility>
@@ -274,24 +275,31 @@ public:
 
   /// Solves with the matrix as assembled now, using the last factorization — of a nearby
   /// assembly, also of the pattern before a few edge flips — as preconditioner of an
-  /// iterative refinement. When every weight changed by
-  /// a relative epsilon since that factorization, the error contracts by epsilon per
-  /// refinement (a Laplacian with non-negative weights is then within (1 +- epsilon) of the
-  /// factorized one in the Loewner order). Returns false when `max_refinements` corrections
-  /// do not shrink below `tolerance` relative to x.
+  /// iterative refinement. When every weight changed by a relative epsilon since that
+  /// factorization, the error contracts by epsilon per refinement (a Laplacian with
+  /// non-negative weights is then within (1 +- epsilon) of the factorized one in the Loewner
+  /// order). Succeeds when a correction is below `tolerance` relative to x, or when the
+  /// corrections stop halving below `rounding_floor` of it: there the refinement has reached
+  /// the solve's own rounding (condition number times epsilon, some 1e-10 at 4M unknowns),
+  /// which a new factorization would not lower. Returns false otherwise, after at most
+  /// `max_refinements` corrections.
   template <class Rhs>
   bool solve_refined(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance = 1e-13,
                      int max_refinements = 6) const
   {
+    constexpr double rounding_floor = 1e-8;
     const SparseSolver& factor = factorized_ ? *solver_ : *previous_;
     x = factor.solve(b);
+    double last = HUGE_VAL;
     for(int refinement = 0; refinement < max_refinements; ++refinement)
     {
       const typename Rhs::PlainObject correction =
         factor.solve(b - matrix_.template selfadjointView<Eigen::Upper>() * x);
       x += correction;
-      if(correction.norm() <= tolerance * x.norm())
+      const double size = correction.norm(), scale = x.norm();
+      if(size <= tolerance * scale || (size > 0.5 * last && size <= rounding_floor * scale))
         return x.allFinite();
+      last = size;
     }
     return false;
   }
