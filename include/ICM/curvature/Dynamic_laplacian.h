@@ -258,6 +258,8 @@ public:
       return true;
     solver_->factorize(matrix_);
     factorized_ = solver_->info() == Eigen::Success;
+    previous_ = std::make_unique<SparseSolver>(); // outdated now: its memory goes
+    previous_factorized_ = false;
     return factorized_;
   }
 

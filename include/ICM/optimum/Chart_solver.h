@@ -398,14 +398,16 @@ Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, c
   // Harmonic first on a large chart; by propagation first otherwise, and harmonic after all
   // when the propagation misses the metric's lengths: the better of the two is kept.
   const bool harmonic_first = method.harmonic_for(laid.disk.number_of_faces());
-  Dynamic_laplacian<Solver>* newton =
-    is_layout_laplacian_of(solver.laplacian(), triangulation, laid.disk) ? &solver.laplacian() : nullptr;
   uv.clear(); // it may hold the layout of a metric that failed
   for(int attempt = 0; attempt < 2; ++attempt)
   {
     const bool harmonic = harmonic_first == (attempt == 0);
     std::vector<Uv> candidate;
     std::string why;
+    // Newton's Laplacian, only asked for here: it brings its pattern up to date with flips.
+    Dynamic_laplacian<Solver>* newton = nullptr;
+    if(harmonic && is_layout_laplacian_of(solver.laplacian(), triangulation, laid.disk))
+      newton = &solver.laplacian();
     if(harmonic && !lay_out_cut_harmonically<Solver>(laid.disk, disk_lengths, curvature, candidate, why, newton))
       continue; // the propagation is always possible
     if(!harmonic)
