@@ -10,7 +10,10 @@
 // The factorization is made once. A new cone c only adds the constraint u_c = 0, so with
 // x = Delta_FF^{-1} b on the vertices F free at the start, u = x + sum_t lambda_t G_t with
 // G_t = Delta_FF^{-1} e_t and the lambdas from the k x k system of the cones' rows of G (the
-// capacitance matrix). Per cone: one solve for its column of G, one for u; memory O(n + k^2).
+// capacitance matrix). Per cone: one solve for its column of G; u itself is x + G lambda
+// from the kept columns (single precision: the placement compares |u| between vertices, and
+// a column of 64 cones at a million vertices then takes 256 MB, not 512), with a second
+// solve only past `kept_columns` cones. Memory O(n k + k^2).
 //
 // A closed surface without a singular vertex is factorized with one vertex p pinned (the
 // constant vector spans the kernel of Delta). u is then x + sum lambda_t G_t + c, and p's
@@ -120,6 +123,10 @@ public:
       e[laplacian_->free_index(v)] = 1;
       column = laplacian_->solve(e);
     }
+    if(has_every_column() && k < kept_columns)
+      columns_.push_back(column.cast<float>());
+    else
+      columns_.clear(); // past the budget: solve() goes back to one solve per call
     cones_.push_back(v);
     capacitance_.conservativeResize(k + 1, k + 1);
     for(int t = 0; t <= k; ++t)
@@ -137,6 +144,8 @@ public:
   void remove_cone(int i)
   {
     const int k = static_cast<int>(cones_.size());
+    if(has_every_column())
+      columns_.erase(columns_.begin() + i);
     cones_.erase(cones_.begin() + i);
     Eigen::MatrixXd kept(k - 1, k - 1);
     for(int r = 0, rr = 0; r < k; ++r)
@@ -152,7 +161,7 @@ public:
   }
 
   /// u - u0 of the linearized optimum with the cones so far, per vertex.
-  Eigen::VectorXd solve() const { return solve_with_cones(b_, sum_b_, x_); }
+  Eigen::VectorXd solve() const { return solve_with_cones(b_, sum_b_, x_, has_every_column()); }
 
   /// The linearized curvature 2 pi - angle of each cone, in the order added: the point
   /// source that holds u = 0 there, since K0 + Delta u vanishes at every other free vertex.
@@ -171,7 +180,7 @@ public:
     Eigen::VectorXd source = Eigen::VectorXd::Zero(laplacian_->size());
     if(laplacian_->free_index(v) >= 0)
       source[laplacian_->free_index(v)] = 1;
-    return solve_with_cones(source, 1.0, laplacian_->solve(source));
+    return solve_with_cones(source, 1.0, laplacian_->solve(source), false);
   }
 
   /// The vertices' shares of the 3D area.
@@ -189,17 +198,26 @@ public:
 
 private:
   /// Delta u = b off the cones (b given per free unknown, `b_sum` its sum over every
-  /// vertex), u = 0 at the cones; `x` = Delta_FF^{-1} b.
-  Eigen::VectorXd solve_with_cones(const Eigen::VectorXd& b, double b_sum, const Eigen::VectorXd& x) const
+  /// vertex), u = 0 at the cones; `x` = Delta_FF^{-1} b. `from_columns`: u = x + G lambda
+  /// from the kept columns (only for b = b_), else one more solve.
+  Eigen::VectorXd solve_with_cones(const Eigen::VectorXd& b, double b_sum, const Eigen::VectorXd& x,
+                                   bool from_columns) const
   {
     const int k = static_cast<int>(cones_.size());
     Eigen::VectorXd lambda;
     const double constant = cone_sources(b_sum, x, lambda);
-    Eigen::VectorXd source = b;
-    for(int t = 0; t < k; ++t)
-      if(laplacian_->free_index(cones_[t]) >= 0)
-        source[laplacian_->free_index(cones_[t])] += lambda[t];
-    const Eigen::VectorXd free_u = k > 0 ? Eigen::VectorXd(laplacian_->solve(source)) : x;
+    Eigen::VectorXd free_u = x;
+    if(from_columns)
+      for(int t = 0; t < k; ++t)
+        free_u += lambda[t] * columns_[t].cast<double>();
+    else if(k > 0)
+    {
+      Eigen::VectorXd source = b;
+      for(int t = 0; t < k; ++t)
+        if(laplacian_->free_index(cones_[t]) >= 0)
+          source[laplacian_->free_index(cones_[t])] += lambda[t];
+      free_u = laplacian_->solve(source);
+    }
     Eigen::VectorXd u = Eigen::VectorXd::Constant(index_.number_of_vertices(), constant);
     for(int i = 0; i < laplacian_->size(); ++i)
       u[laplacian_->vertex(i)] += free_u[i];
@@ -241,6 +259,8 @@ private:
     return constant;
   }
 
+  bool has_every_column() const { return columns_.size() == cones_.size(); }
+
   double value_at(const Eigen::VectorXd& free_values, int v) const
   {
     const int i = laplacian_->free_index(v);
@@ -253,7 +273,9 @@ private:
   Eigen::VectorXd k0_, b_, x_;
   double sum_b_ = 0;
   bool pinned_ = false;
+  static constexpr int kept_columns = 64;
   std::vector<int> cones_;
+  std::vector<Eigen::VectorXf> columns_; // G's columns, one per cone, while within the budget
   Eigen::MatrixXd capacitance_;
   std::string message_;
 };

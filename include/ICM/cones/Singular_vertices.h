@@ -89,6 +89,9 @@ struct Cone_selection
   /// as `cones` (empty from the exact placement). A negative one is a cone of angle above
   /// 2 pi, which the cut should pass through rather than end at (`Cut_graph_options`).
   std::vector<double> curvatures;
+  /// The linearized optimum's u - u0 per vertex with these cones (empty from the exact
+  /// placement): near the exact optimum, so the chart's Newton starts there.
+  Eigen::VectorXd log_scale;
   std::string message; ///< empty, or why a solve failed
   bool ok() const { return message.empty(); }
 };
@@ -178,9 +181,9 @@ void move_cones_to_the_largest_scale(Problem& problem, const internal::Mesh_inde
 /// vertex with the largest linearized |u - u0|, or, with `ranked_candidates` > 1, of the one
 /// among that many peaks of |u - u0| whose cone leaves the least area-weighted variance of the
 /// linearized u (one more solve per candidate), until `max_log_scale` (unless 0) or
-/// `max_cones`.
-template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
-Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const Metric& metric,
+/// `max_cones`. `problem` was built with the border and `seeds` fixed, and no cone added.
+template <class Problem>
+Cone_selection linearized_greedy_cones(Problem& problem, const internal::Mesh_index& index,
                                        const std::vector<int>& seeds, const Cone_options& options = Cone_options())
 {
   Cone_selection selection;
@@ -192,7 +195,6 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
       selection.cones.push_back(v);
     }
   const std::size_t user_cones = selection.cones.size();
-  internal::Linearized_cone_problem<SparseSolver, Metric> problem(index, metric, is_singular);
   if(!problem.ok())
   {
     selection.message = problem.message();
@@ -227,6 +229,7 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
       const Eigen::VectorXd k = problem.cone_curvatures();
       for(int v : selection.cones) // the seeds were fixed from the start: unknown
         selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
+      selection.log_scale = problem.solve();
       return selection;
     }
     int best = peaks[0];
@@ -243,6 +246,18 @@ Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const 
     }
     make_cone(best);
   }
+}
+
+/// The same on the linearized problem of `metric` with the border and `seeds` fixed.
+template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
+Cone_selection linearized_greedy_cones(const internal::Mesh_index& index, const Metric& metric,
+                                       const std::vector<int>& seeds, const Cone_options& options = Cone_options())
+{
+  std::vector<char> is_fixed(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  for(int v : seeds)
+    is_fixed[v] = 1;
+  internal::Linearized_cone_problem<SparseSolver, Metric> problem(index, metric, is_fixed);
+  return linearized_greedy_cones(problem, index, seeds, options);
 }
 
 /// Greedy cone placement on the exact entropy optimum. The singular set starts as the border

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -66,9 +67,13 @@ public:
   const Eigen::VectorXd& curvature() const { return k_; }
   const std::vector<double>& weights() const { return w_; }
 
-  /// Moves `u` (free entries only) until K(u)_F = k_target_F.
+  /// Moves `u` (free entries only) until K(u)_F = k_target_F. `first_step`, when given (per
+  /// vertex, its free entries read), is tried as the first direction, line search included:
+  /// the linearized solution, known from elsewhere (the cone placement), is Newton's first
+  /// step and spares its factorization. When a short search does not accept it, Newton
+  /// begins with its own step.
   Newton_report solve(const Eigen::VectorXd& k_target, Eigen::VectorXd& u,
-                      const Newton_options& options = Newton_options())
+                      const Newton_options& options = Newton_options(), const Eigen::VectorXd* first_step = nullptr)
   {
     Newton_report report;
     if(const Status checked = check_options(options); !checked.ok())
@@ -88,6 +93,8 @@ public:
       return report;
     }
     report.residual_history.push_back(max_norm(residual));
+    if(first_step != nullptr && first_step->size() == u.size() && report.residual_history.back() > options.tolerance)
+      try_first_step(k_target, options, *first_step, u, residual, report);
     int blocked_steps = 0;
     while(report.residual_history.back() > options.tolerance)
     {
@@ -116,6 +123,26 @@ public:
   }
 
 private:
+  /// `step` (per vertex) as the first direction, with at most `first_step_halvings` halvings:
+  /// a rejected guess costs a few curvature evaluations, not a factorization.
+  void try_first_step(const Eigen::VectorXd& k_target, const Newton_options& options, const Eigen::VectorXd& step,
+                      Eigen::VectorXd& u, Eigen::VectorXd& residual, Newton_report& report)
+  {
+    constexpr int first_step_halvings = 4;
+    Eigen::VectorXd du(laplacian_.size());
+    for(int i = 0; i < laplacian_.size(); ++i)
+      du[i] = step[laplacian_.vertex(i)];
+    if(!du.allFinite())
+      return;
+    Newton_options short_search = options;
+    short_search.max_line_search_steps = std::min(options.max_line_search_steps, first_step_halvings);
+    bool blocked = false;
+    if(line_search(k_target, short_search, du, u, residual, blocked, report))
+      return;
+    report.message.clear(); // not Newton's failure: its own first step follows
+    report.left_valid_region = false;
+  }
+
   /// The Newton step du = Delta_FF^{-1} residual at the current metric.
   bool newton_direction(const Eigen::VectorXd& k_target, Eigen::VectorXd& residual, Eigen::VectorXd& du,
                         Newton_report& report)

@@ -34,6 +34,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -129,15 +130,28 @@ inline Status user_singular_set(const Mesh_index& index, const std::vector<char>
 
 /// Whether a surface with a border wants interior cones: when its free-boundary optimum is
 /// extreme, judged in the class the optimum will be computed in (the circle packing's optimum
-/// is milder than the mesh's own class on the same mesh).
+/// is milder than the mesh's own class on the same mesh). `first_step` (empty: none) is the
+/// linearized optimum, Newton's first step; `log_scale` receives the optimum's u - u0 (empty
+/// when it failed), whose chart is this problem when no cone is placed.
 template <class Metric, class Solver>
 bool border_wants_cones(const Mesh_index& index, const Metric& metric, const Circle_packing_metric& packing,
-                        const std::vector<char>& is_singular, const Surface_parameterization_options& options)
+                        const std::vector<char>& is_singular, const Surface_parameterization_options& options,
+                        const Eigen::VectorXd& first_step, Eigen::VectorXd& log_scale)
 {
-  Eigen::VectorXd u;
-  Newton_report free = free_boundary_optimum<Solver>(index, metric, is_singular, u, options.newton);
-  double depth = free.converged ? (u - metric.u0).cwiseAbs().maxCoeff() : 0;
-  if(!free.converged && options.fall_back_to_circle_packing)
+  std::vector<char> is_free(is_singular.size());
+  for(std::size_t v = 0; v < is_singular.size(); ++v)
+    is_free[v] = !is_singular[v];
+  Eigen::VectorXd u = metric.u0;
+  Newton_report free = Inverse_curvature_map<Solver, Metric>(index, metric, is_free)
+                         .solve(Eigen::VectorXd::Zero(u.size()), u, options.newton, &first_step);
+  log_scale.resize(0);
+  double depth = 0;
+  if(free.converged)
+  {
+    log_scale = u - metric.u0;
+    depth = log_scale.cwiseAbs().maxCoeff();
+  }
+  else if(options.fall_back_to_circle_packing)
   {
     free = free_boundary_optimum<Solver>(index, packing, is_singular, u, options.newton);
     depth = (u - packing.u0).cwiseAbs().maxCoeff();
@@ -178,23 +192,52 @@ std::vector<int> cone_seeds(const Mesh_index& index, const Circle_packing_metric
   return seeds;
 }
 
+/// The greedy placement's choice in the class of `Metric` on the linearized `problem` (built
+/// with the singular set fixed; the default placement) or by `Cone_placement::Exact_optimum`.
+template <class Solver, class Metric, class Problem>
+Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, std::optional<Problem>& problem,
+                               const std::vector<int>& seeds, const Cone_options& options)
+{
+  if(!problem)
+    return greedy_cones<Solver>(index, metric, seeds, options);
+  if(const Status checked = check_options(options); !checked.ok())
+  {
+    Cone_selection refused;
+    refused.message = checked.message;
+    return refused;
+  }
+  return linearized_greedy_cones(*problem, index, seeds, options);
+}
+
 /// Automatic cones, where the surface wants them: greedy placement from `cone_seeds`, in the
 /// class the optimum is computed in (cones placed by the circle packing's conformal factor
 /// serve the default metric worse: doc/benchmarks.md), then in the circle packing's.
 /// `expected_curvature` receives, at each cone placed, the curvature the placement predicts
-/// for it (NaN when it predicts none).
+/// for it (NaN when it predicts none); `first_step` the chart's first Newton step from u0
+/// (empty: none), the linearized optimum with the cones placed, or when a surface with a
+/// border wants no cone its free-boundary optimum itself, where that Newton then ends.
 template <class Metric, class Solver>
 Status place_automatic_cones(const Mesh_index& index, const Surface_parameterization_options& options,
-                             std::vector<char>& is_singular, std::vector<double>& expected_curvature)
+                             std::vector<char>& is_singular, std::vector<double>& expected_curvature,
+                             Eigen::VectorXd& first_step)
 {
   const Circle_packing_metric packing(index);
   const Metric metric = make_metric<Metric>(index, {});
   const bool closed = index.number_of_boundary_loops() == 0;
-  if(!closed && !border_wants_cones<Metric, Solver>(index, metric, packing, is_singular, options))
-    return Status::success();
+  // One factorization at u0 serves the linearized placement and starts the free-boundary
+  // Newton, whose first step it is.
+  std::optional<Linearized_cone_problem<Solver, Metric>> problem;
+  if(options.cones.placement == Cone_placement::Linearized)
+    problem.emplace(index, metric, is_singular);
+  if(!closed)
+  {
+    const Eigen::VectorXd linearized = problem && problem->ok() ? problem->solve() : Eigen::VectorXd();
+    if(!border_wants_cones<Metric, Solver>(index, metric, packing, is_singular, options, linearized, first_step))
+      return Status::success();
+  }
   const std::vector<int> seeds = cone_seeds<Solver>(index, packing, is_singular, options);
   const Cone_options cones = with_newton(options.cones, options.newton);
-  Cone_selection selection = greedy_cones<Solver>(index, metric, seeds, cones);
+  Cone_selection selection = greedy_cones_in<Solver>(index, metric, problem, seeds, cones);
   if(!selection.ok() && options.fall_back_to_circle_packing)
     selection = greedy_cones<Solver>(index, packing, seeds, cones);
   if(!selection.ok())
@@ -206,6 +249,7 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
     if(i < selection.curvatures.size() && std::isnan(expected_curvature[v]))
       expected_curvature[v] = selection.curvatures[i];
   }
+  first_step = std::move(selection.log_scale);
   return Status::success();
 }
 
@@ -320,8 +364,10 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   if(const Status status = user_singular_set(index, is_user_cone, prescribed, user_seams, is_singular); !status.ok())
     return status;
   std::vector<double> expected_curvature = prescribed;
+  Eigen::VectorXd first_step;
   if(options.automatic_cones && options.cones.max_cones > 0 && user_seams.empty())
-    if(const Status status = place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature);
+    if(const Status status =
+         place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature, first_step);
        !status.ok())
       return status;
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() > 0 &&
@@ -332,6 +378,7 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   progress("cut", 0.35);
   t = Clock::now();
   Chart_problem problem = singular_set_problem(index, is_singular, prescribed);
+  problem.first_step = std::move(first_step);
   if(const Status status =
        cut_component(index, is_singular, prescribed, expected_curvature, user_seams, chart, problem.seams, cut);
      !status.ok())

@@ -64,6 +64,10 @@ struct Chart_problem
   const Cut_mesh* cut = nullptr;
   /// A prescribed border (null or `Border_kind::Free`: none); only on an uncut disk.
   const Border_target* border = nullptr;
+  /// The first step of the entropy's Newton from u0, per vertex of `mesh` (empty: Newton's
+  /// own): the cone placement's linearized optimum, which is that step without its
+  /// factorization.
+  Eigen::VectorXd first_step;
 
   bool prescribes_border() const { return border != nullptr && border->prescribes_border(); }
 };
@@ -222,7 +226,8 @@ Status entropy_optimum(const Chart_problem& problem, const Chart_options& option
     return diffusion.converged ? Status::success()
                                : Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, diffusion.message);
   }
-  const Newton_report newton = solver.solve(problem.target, u, options.newton);
+  const Newton_report newton =
+    solver.solve(problem.target, u, options.newton, problem.first_step.size() > 0 ? &problem.first_step : nullptr);
   report.newton_iterations = newton.iterations;
   report.residual_history = newton.residual_history;
   return newton.converged ? Status::success() : Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, newton.message);
