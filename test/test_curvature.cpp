@@ -1,6 +1,7 @@
 // The curvature stage (curvature/) on flat arrays: the mesh index it reads, the curvature map
 // and its Jacobian (the dynamic Laplacian), Newton on it (Algorithm 1).
 
+#include <ICM/cones/Linearized_cones.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
@@ -162,6 +163,112 @@ TEST(InverseCurvatureMap, NewtonConvergesQuadratically)
   const std::vector<double>& r = report.residual_history;
   ASSERT_GE(r.size(), 3u);
   icm_test::expect_quadratic_convergence(r);
+}
+
+namespace {
+
+std::vector<char> interior_vertices(const Mesh_index& index)
+{
+  std::vector<char> is_interior(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    is_interior[v] = !index.is_boundary_vertex[v];
+  return is_interior;
+}
+
+} // namespace
+
+TEST(InverseCurvatureMap, TheLinearizedOptimumIsNewtonsFirstStepWithoutItsFactorization)
+{
+  // The free-boundary optimum of a disk from u0: Newton's own, then with the linearized
+  // optimum (cones/Linearized_cones.h, no cone) given as the first step: the same steps to
+  // the same metric, one factorization fewer. A first step Newton's line search rejects
+  // (every interior u raised by 50) leaves Newton's own run as it was.
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  const std::vector<char> is_free = interior_vertices(index);
+  const Eigen::VectorXd flat = Eigen::VectorXd::Zero(index.number_of_vertices());
+  auto run = [&](const Eigen::VectorXd* first_step, Eigen::VectorXd& u) {
+    ICM::Inverse_curvature_map<> solver(index, metric, is_free);
+    u = metric.u0;
+    return solver.solve(flat, u, ICM::Newton_options(), first_step);
+  };
+  Eigen::VectorXd u_own, u_given, u_rejected;
+  const ICM::Newton_report own = run(nullptr, u_own);
+  const std::vector<char> border(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  ICM::internal::Linearized_cone_problem<ICM::Default_sparse_solver, ICM::Circle_packing_metric> linearized(
+    index, metric, border);
+  ASSERT_TRUE(linearized.ok()) << linearized.message();
+  const Eigen::VectorXd first_step = linearized.solve();
+  const ICM::Newton_report given = run(&first_step, u_given);
+  Eigen::VectorXd raised = Eigen::VectorXd::Zero(index.number_of_vertices());
+  for(int v = 0; v < index.number_of_vertices(); ++v)
+    raised[v] = is_free[v] ? 50.0 : 0.0;
+  const ICM::Newton_report rejected = run(&raised, u_rejected);
+  ASSERT_TRUE(own.converged) << own.message;
+  ASSERT_TRUE(given.converged) << given.message;
+  ASSERT_TRUE(rejected.converged) << rejected.message;
+  ASSERT_GE(own.residual_history.size(), 3u);
+  EXPECT_GT(own.residual_history[0], 1e-2); // far enough that every step factorizes
+  EXPECT_EQ(given.iterations, own.iterations);
+  EXPECT_NEAR(given.residual_history[1], own.residual_history[1], 1e-9);
+  EXPECT_EQ(given.factorizations, own.factorizations - 1);
+  EXPECT_LT((u_given - u_own).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_EQ(rejected.residual_history, own.residual_history);
+  EXPECT_EQ(rejected.factorizations, own.factorizations);
+  EXPECT_LT((u_rejected - u_own).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(LinearizedCones, OptimumIsFlatOffTheConesWithinAndPastTheKeptColumns)
+{
+  // u = x + G lambda from the kept single-precision columns of G (up to 64 cones), then by a
+  // solve past them: either way the linearized curvature K0 + Delta u vanishes at every free
+  // vertex that is no cone, and u = 0 on the border and at the cones.
+  const Mesh_index index = index_file("nefertiti.off");
+  const ICM::Circle_packing_metric metric = ICM::initial_circle_packing_metric(index);
+  std::vector<char> is_fixed(index.is_boundary_vertex.begin(), index.is_boundary_vertex.end());
+  ICM::internal::Linearized_cone_problem<ICM::Default_sparse_solver, ICM::Circle_packing_metric> problem(index, metric,
+                                                                                                         is_fixed);
+  ASSERT_TRUE(problem.ok()) << problem.message();
+  ICM::Curvature_map<> curvature(index, metric);
+  Eigen::VectorXd k0;
+  std::vector<double> w;
+  curvature.evaluate(metric.u0, k0, &w);
+  auto expect_flat_off_the_cones = [&](double tolerance, int cones) {
+    const Eigen::VectorXd u = problem.solve();
+    Eigen::VectorXd linearized = k0;
+    for(int e = 0; e < index.number_of_edges(); ++e)
+    {
+      const int a = index.edges[e][0], b = index.edges[e][1];
+      linearized[a] += w[e] * (u[a] - u[b]);
+      linearized[b] += w[e] * (u[b] - u[a]);
+    }
+    double worst = 0;
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+      if(is_fixed[v])
+        EXPECT_EQ(u[v], 0.0) << "vertex " << v << " with " << cones << " cones";
+      else
+        worst = std::max(worst, std::abs(linearized[v]));
+    EXPECT_LT(worst, tolerance) << cones << " cones";
+  };
+  std::vector<int> cones;
+  for(int v = 0; v < index.number_of_vertices() && cones.size() < 70; v += 3)
+    if(!is_fixed[v])
+    {
+      problem.add_cone(v);
+      is_fixed[v] = 1;
+      cones.push_back(v);
+      if(cones.size() == 5)
+      {
+        expect_flat_off_the_cones(1e-5, 5);
+        problem.remove_cone(problem.position_of(cones[1])); // its column goes with it
+        is_fixed[cones[1]] = 0;
+        expect_flat_off_the_cones(1e-5, 4);
+        problem.add_cone(cones[1]);
+        is_fixed[cones[1]] = 1;
+      }
+    }
+  ASSERT_EQ(cones.size(), 70u);
+  expect_flat_off_the_cones(1e-10, 70);
 }
 
 TEST(InverseCurvatureMap, RefusesCurvatureThatViolatesGaussBonnet)

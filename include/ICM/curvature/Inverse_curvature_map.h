@@ -38,6 +38,8 @@ struct Newton_report
   /// Steps whose direction came from an earlier step's factorization, refined against the
   /// current Laplacian, rather than from a factorization of their own.
   int refined_steps = 0;
+  /// Numeric factorizations of the Laplacian, the run's main cost on a large mesh.
+  int factorizations = 0;
   /// The line search stalled because every shorter step still made some face invalid.
   bool left_valid_region = false;
   std::string message;
@@ -162,6 +164,7 @@ private:
       report.message = "the dynamic Laplacian could not be factorized (not positive definite)";
       return false;
     }
+    ++report.factorizations;
     residual_at_factorization_ = max_norm(residual);
     report.seconds_factorization += internal::seconds_since(t);
     t = internal::Clock::now();
