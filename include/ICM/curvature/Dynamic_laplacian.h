@@ -272,6 +272,8 @@ public:
   template <class Rhs>
   typename Rhs::PlainObject solve(const Eigen::MatrixBase<Rhs>& b) const
   {
+    if(size() == 0)
+      return b; // no unknown (every vertex fixed): nothing was factorized
     return solver_->solve(b);
   }
 
@@ -290,6 +292,11 @@ public:
                      int max_refinements = 6) const
   {
     constexpr double rounding_floor = 1e-8;
+    if(size() == 0)
+    {
+      x = b;
+      return true;
+    }
     const SparseSolver& factor = factorized_ ? *solver_ : *previous_;
     x = factor.solve(b);
     double last = HUGE_VAL;
