@@ -90,7 +90,7 @@ struct Cone_selection
   /// 2 pi, which the cut should pass through rather than end at (`Cut_graph_options`).
   std::vector<double> curvatures;
   /// The linearized optimum's u - u0 per vertex with these cones (empty from the exact
-  /// placement): near the exact optimum, so the chart's Newton starts there.
+  /// placement): the first step of the chart's Newton from u0, without its factorization.
   Eigen::VectorXd log_scale;
   std::string message; ///< empty, or why a solve failed
   bool ok() const { return message.empty(); }
