@@ -83,6 +83,8 @@ public:
 
   const std::string& message() const { return message_; }
   bool ok() const { return message_.empty(); }
+  /// Delta_FF at u0, factorized (when `ok()`).
+  const Dynamic_laplacian<SparseSolver>& laplacian() const { return *laplacian_; }
   /// Whether the cones so far determine u (a closed surface with chi != 0 needs one).
   bool is_determined() const { return !pinned_ || !cones_.empty(); }
 

@@ -263,6 +263,10 @@ public:
     return factorized_;
   }
 
+  /// Whether `other` has the same unknowns in the same order, so that its factorization
+  /// preconditions this Laplacian's solves.
+  bool numbers_unknowns_as(const Dynamic_laplacian& other) const { return vertex_of_ == other.vertex_of_; }
+
   /// Whether a numeric factorization of some earlier assembly is available: of this pattern,
   /// or of the one before the last `rebuild_pattern()` when that kept the unknowns' numbers.
   bool has_factorization() const { return factorized_ || previous_factorized_; }
@@ -313,6 +317,52 @@ public:
     return false;
   }
 
+  /// Solves with the matrix as assembled now by conjugate gradients, preconditioned by the
+  /// last factorization (of a nearby assembly, also of the pattern before a few edge flips).
+  /// Where every weight changed by a relative epsilon since that factorization, the
+  /// preconditioned matrix has its spectrum in [1 - epsilon, 1 + epsilon] and each iteration
+  /// shrinks the error by about epsilon / 2: a Newton step's weights, which move by a few
+  /// percent, are solved to a Newton step's accuracy in a few triangular solves, where
+  /// `solve_refined`, a fixed-point iteration, contracts by epsilon only and diverges past
+  /// epsilon = 1. Succeeds when |b - A x| <= `tolerance` |b|; returns false after
+  /// `max_iterations` solves, or on a direction of non-positive curvature (a Laplacian with
+  /// negative weights may be indefinite). `iterations` counts the solves. `factorized`, when
+  /// given, lends its last factorization instead (`numbers_unknowns_as(*factorized)`).
+  template <class Rhs>
+  bool solve_preconditioned(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance,
+                            int max_iterations, int& iterations, const Dynamic_laplacian* factorized = nullptr) const
+  {
+    using Vector = typename Rhs::PlainObject;
+    iterations = 0;
+    x = Vector::Zero(b.size());
+    if(size() == 0)
+      return true;
+    const Dynamic_laplacian& lender = factorized != nullptr ? *factorized : *this;
+    const SparseSolver& factor = lender.factorized_ ? *lender.solver_ : *lender.previous_;
+    const double target = tolerance * b.norm();
+    Vector r = b, z = factor.solve(r), p = z, q(b.size());
+    double rz = r.dot(z);
+    for(iterations = 1; iterations <= max_iterations; ++iterations)
+    {
+      q.noalias() = matrix_.template selfadjointView<Eigen::Upper>() * p;
+      const double curvature = p.dot(q);
+      if(!(curvature > 0.0))
+        return false;
+      const double step = rz / curvature;
+      x += step * p;
+      r -= step * q;
+      if(r.norm() <= target)
+        return x.allFinite();
+      if(iterations == max_iterations)
+        break;
+      z = factor.solve(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
+  }
+
 private:
   /// Numbers the unknowns in a fill-reducing order (the mesh's, when it has one and
   /// `use_mesh_order`, else of the current edges), then analyses.
@@ -336,14 +386,17 @@ private:
       return 0.0;
   }
 
-  /// A new analysis ends the current factorization; it is kept aside for `solve_refined`,
-  /// since a Newton step near the solution flips a few edges (lion-head Loop x3: 2 of 1.6M)
-  /// and leaves a factorization that still solves the new system in a few refinements.
+  /// A new analysis ends the current factorization; it is kept aside for `solve_refined` and
+  /// `solve_preconditioned` (until the next factorization or renumbering, over any number of
+  /// analyses), since a Newton step near the solution flips a few edges (lion-head Loop x3:
+  /// 2 of 1.6M) and leaves a factorization that still solves the new system in a few solves.
   void analyze()
   {
     if(factorized_)
+    {
       std::swap(solver_, previous_);
-    previous_factorized_ = factorized_;
+      previous_factorized_ = true;
+    }
     factorized_ = false;
     if(size() > 0)
       solver_->analyzePattern(matrix_);

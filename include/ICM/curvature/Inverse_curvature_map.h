@@ -35,9 +35,11 @@ struct Newton_report
   std::vector<double> residual_history;
   std::vector<double> step_lengths;
   double seconds_curvature = 0, seconds_factorization = 0, seconds_solve = 0;
-  /// Steps whose direction came from an earlier step's factorization, refined against the
-  /// current Laplacian, rather than from a factorization of their own.
+  /// Steps whose direction came from an earlier step's factorization, by conjugate gradients
+  /// on the current Laplacian, rather than from a factorization of their own.
   int refined_steps = 0;
+  /// Triangular solves of those conjugate gradients, the failed attempts' included.
+  int preconditioned_solves = 0;
   /// Numeric factorizations of the Laplacian, the run's main cost on a large mesh.
   int factorizations = 0;
   /// The line search stalled because every shorter step still made some face invalid.
@@ -65,6 +67,14 @@ public:
     update_pattern();
     return laplacian_;
   }
+  /// Lends Newton a factorization of a nearby Laplacian on the same unknowns (the linearized
+  /// cone problem's, at u0), to precondition its directions until it has one of its own.
+  /// `laplacian` must outlive the solves; one with other unknowns is ignored.
+  void borrow_factorization(const Dynamic_laplacian<SparseSolver>& laplacian)
+  {
+    borrowed_ = laplacian.has_factorization() && laplacian_.numbers_unknowns_as(laplacian) ? &laplacian : nullptr;
+  }
+
   /// Curvature and weights at the last accepted u.
   const Eigen::VectorXd& curvature() const { return k_; }
   const std::vector<double>& weights() const { return w_; }
@@ -151,9 +161,12 @@ private:
   {
     internal::Clock::time_point t = internal::Clock::now();
     if(update_pattern())
+    {
       free_residual(k_target, k_, residual); // the unknowns were numbered again
+      borrowed_ = nullptr;                   // in another order than the lender's
+    }
     laplacian_.assemble(w_);
-    if(refine_with_last_factorization(residual, du))
+    if(direction_from_last_factorization(residual, du, report))
     {
       ++report.refined_steps;
       report.seconds_solve += internal::seconds_since(t);
@@ -165,7 +178,6 @@ private:
       return false;
     }
     ++report.factorizations;
-    residual_at_factorization_ = max_norm(residual);
     report.seconds_factorization += internal::seconds_since(t);
     t = internal::Clock::now();
     du = laplacian_.solve(residual);
@@ -178,19 +190,25 @@ private:
     return true;
   }
 
-  /// A step from a residual below 1e-2 changes the weights by about that residual, and the
-  /// factorization it was made with then solves the next system by iterative refinement, in
-  /// a few triangular solves each shrinking the error by that relative change: a fraction of
-  /// a factorization's cost (lion-head Loop x3: 0.07 s a solve, 1.2 s a factorization). The
-  /// direction needs no more than 1e-8 relative accuracy: the step's residual is then 1e-8 of
-  /// the one before plus Newton's quadratic term. Otherwise, or when the refinement does not
-  /// contract quickly, the step factorizes.
-  bool refine_with_last_factorization(const Eigen::VectorXd& residual, Eigen::VectorXd& du) const
+  /// Newton's direction needs only the accuracy of an inexact Newton method: solved to a
+  /// relative residual eta = min(0.1, |residual|_max), the step's residual is eta times the
+  /// one before plus Newton's own quadratic term, so convergence stays quadratic. Conjugate
+  /// gradients preconditioned by the last factorization reach it in a few triangular solves
+  /// once the weights move by a few percent per step (lion-head Loop x3: 0.07 s a solve,
+  /// 1.3 s a factorization). When `max_preconditioned_solves` do not, the step factorizes.
+  bool direction_from_last_factorization(const Eigen::VectorXd& residual, Eigen::VectorXd& du,
+                                         Newton_report& report) const
   {
-    constexpr double near_solution = 1e-2, direction_accuracy = 1e-8;
-    constexpr int max_refinements = 3;
-    return laplacian_.has_factorization() && residual_at_factorization_ < near_solution &&
-           laplacian_.solve_refined(residual, du, direction_accuracy, max_refinements);
+    constexpr double max_forcing = 0.1;
+    constexpr int max_preconditioned_solves = 8;
+    const bool own = laplacian_.has_factorization();
+    if(!own && borrowed_ == nullptr)
+      return false;
+    int solves = 0;
+    const bool solved = laplacian_.solve_preconditioned(residual, du, std::min(max_forcing, max_norm(residual)),
+                                                        max_preconditioned_solves, solves, own ? nullptr : borrowed_);
+    report.preconditioned_solves += solves;
+    return solved;
   }
 
   /// Line search on the Ricci energy E, convex along the line, whose derivative in the step
@@ -268,9 +286,9 @@ private:
   Curvature_map<Metric> curvature_;
   Dynamic_laplacian<SparseSolver> laplacian_;
   long pattern_version_;
-  double residual_at_factorization_ = HUGE_VAL;            // max |residual| of the step that factorized
   Eigen::VectorXd k_, k_trial_, u_trial_, trial_residual_; // the last two: scratch of the line search
   std::vector<double> w_, w_trial_;
+  const Dynamic_laplacian<SparseSolver>* borrowed_ = nullptr; // see borrow_factorization()
 };
 
 /// Algorithm 1: the metric of the conformal class whose curvature is `k_target` everywhere.

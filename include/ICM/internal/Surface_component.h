@@ -130,20 +130,27 @@ inline Status user_singular_set(const Mesh_index& index, const std::vector<char>
 
 /// Whether a surface with a border wants interior cones: when its free-boundary optimum is
 /// extreme, judged in the class the optimum will be computed in (the circle packing's optimum
-/// is milder than the mesh's own class on the same mesh). `first_step` (empty: none) is the
-/// linearized optimum, Newton's first step; `log_scale` receives the optimum's u - u0 (empty
-/// when it failed), whose chart is this problem when no cone is placed.
-template <class Metric, class Solver>
+/// is milder than the mesh's own class on the same mesh). `linearized` (null: none), the
+/// linearized problem with the same singular set, gives Newton its first step and its
+/// factorization at u0; `log_scale` receives the optimum's u - u0 (empty when it failed),
+/// whose chart is this problem when no cone is placed.
+template <class Metric, class Solver, class Linearized>
 bool border_wants_cones(const Mesh_index& index, const Metric& metric, const Circle_packing_metric& packing,
                         const std::vector<char>& is_singular, const Surface_parameterization_options& options,
-                        const Eigen::VectorXd& first_step, Eigen::VectorXd& log_scale)
+                        const Linearized* linearized, Eigen::VectorXd& log_scale)
 {
   std::vector<char> is_free(is_singular.size());
   for(std::size_t v = 0; v < is_singular.size(); ++v)
     is_free[v] = !is_singular[v];
   Eigen::VectorXd u = metric.u0;
-  Newton_report free = Inverse_curvature_map<Solver, Metric>(index, metric, is_free)
-                         .solve(Eigen::VectorXd::Zero(u.size()), u, options.newton, &first_step);
+  Inverse_curvature_map<Solver, Metric> newton(index, metric, is_free);
+  Eigen::VectorXd first_step;
+  if(linearized != nullptr)
+  {
+    first_step = linearized->solve();
+    newton.borrow_factorization(linearized->laplacian());
+  }
+  Newton_report free = newton.solve(Eigen::VectorXd::Zero(u.size()), u, options.newton, &first_step);
   log_scale.resize(0);
   double depth = 0;
   if(free.converged)
@@ -231,7 +238,7 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
     problem.emplace(index, metric, is_singular);
   if(!closed)
   {
-    const Eigen::VectorXd linearized = problem && problem->ok() ? problem->solve() : Eigen::VectorXd();
+    const auto* linearized = problem && problem->ok() ? &*problem : nullptr;
     if(!border_wants_cones<Metric, Solver>(index, metric, packing, is_singular, options, linearized, first_step))
       return Status::success();
   }
