@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -282,10 +283,7 @@ Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metri
   Eigen::VectorXd u = metric.u0;
   for(;;)
   {
-    std::vector<char> is_free(nv);
-    for(int v = 0; v < nv; ++v)
-      is_free[v] = !is_singular[v];
-    Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, is_free);
+    Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, free_vertices_off(is_singular));
     for(int v = 0; v < nv; ++v)
       if(is_singular[v])
         u[v] = metric.u0[v];
@@ -323,17 +321,25 @@ Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metri
   }
 }
 
+/// A selection that placed nothing, naming the first field of `options` out of range; none
+/// when every field is in range.
+inline std::optional<Cone_selection> refused_selection(const Cone_options& options)
+{
+  const Status checked = check_options(options);
+  if(checked.ok())
+    return std::nullopt;
+  Cone_selection refused;
+  refused.message = checked.message;
+  return refused;
+}
+
 /// Greedy cone placement by `options.placement` (see above).
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
 Cone_selection greedy_cones(const internal::Mesh_index& index, const Metric& metric, const std::vector<int>& seeds,
                             const Cone_options& options = Cone_options())
 {
-  if(const Status checked = check_options(options); !checked.ok())
-  {
-    Cone_selection refused;
-    refused.message = checked.message;
-    return refused;
-  }
+  if(std::optional<Cone_selection> refused = refused_selection(options))
+    return *refused;
   return options.placement == Cone_placement::Linearized
            ? linearized_greedy_cones<SparseSolver>(index, metric, seeds, options)
            : exact_greedy_cones<SparseSolver>(index, metric, seeds, options);

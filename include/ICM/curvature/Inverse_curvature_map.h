@@ -49,6 +49,15 @@ struct Newton_report
   double final_residual() const { return residual_history.empty() ? 0.0 : residual_history.back(); }
 };
 
+/// The free set F of a singular set S: every vertex off S.
+inline std::vector<char> free_vertices_off(const std::vector<char>& is_singular)
+{
+  std::vector<char> is_free(is_singular.size());
+  for(std::size_t v = 0; v < is_singular.size(); ++v)
+    is_free[v] = !is_singular[v];
+  return is_free;
+}
+
 /// Newton's method for K(u)_F = k_F with u fixed off F. The Laplacian pattern is analysed
 /// once at construction and every step only refactorizes numerically.
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
@@ -117,7 +126,7 @@ public:
         return report;
       }
       bool blocked = false;
-      if(!newton_direction(k_target, residual, du, report) ||
+      if(!newton_direction(k_target, options.tolerance, residual, du, report) ||
          !line_search(k_target, options, du, u, residual, blocked, report))
         return report;
       blocked_steps = blocked && report.step_lengths.back() < 1.0 / 32 ? blocked_steps + 1 : 0;
@@ -155,9 +164,10 @@ private:
     report.left_valid_region = false;
   }
 
-  /// The Newton step du = Delta_FF^{-1} residual at the current metric.
-  bool newton_direction(const Eigen::VectorXd& k_target, Eigen::VectorXd& residual, Eigen::VectorXd& du,
-                        Newton_report& report)
+  /// The Newton step du = Delta_FF^{-1} residual at the current metric, as accurate as a run
+  /// to `tolerance` needs.
+  bool newton_direction(const Eigen::VectorXd& k_target, double tolerance, Eigen::VectorXd& residual,
+                        Eigen::VectorXd& du, Newton_report& report)
   {
     internal::Clock::time_point t = internal::Clock::now();
     if(update_pattern())
@@ -166,7 +176,7 @@ private:
       borrowed_ = nullptr;                   // in another order than the lender's
     }
     laplacian_.assemble(w_);
-    if(direction_from_last_factorization(residual, du, report))
+    if(direction_from_last_factorization(residual, tolerance, du, report))
     {
       ++report.refined_steps;
       report.seconds_solve += internal::seconds_since(t);
@@ -192,21 +202,26 @@ private:
 
   /// Newton's direction needs only the accuracy of an inexact Newton method: solved to a
   /// relative residual eta = min(0.1, |residual|_max), the step's residual is eta times the
-  /// one before plus Newton's own quadratic term, so convergence stays quadratic. Conjugate
-  /// gradients preconditioned by the last factorization reach it in a few triangular solves
-  /// once the weights move by a few percent per step (lion-head Loop x3: 0.07 s a solve,
-  /// 1.3 s a factorization). When `max_preconditioned_solves` do not, the step factorizes.
-  bool direction_from_last_factorization(const Eigen::VectorXd& residual, Eigen::VectorXd& du,
+  /// one before plus Newton's own quadratic term, so convergence stays quadratic. Near the end
+  /// eta need not be tighter than what lands the step `final_margin` below the tolerance: a
+  /// cut chart's seams close to the metric's flatness, which full Newton steps took far below
+  /// the tolerance, and conjugate gradients on a factorization a few steps old may not reach
+  /// eta = 1e-9 in their budget. They reach the rest in a few triangular solves once the
+  /// weights move by a few percent per step (lion-head Loop x3: 0.07 s a solve, 1.3 s a
+  /// factorization). When `max_preconditioned_solves` do not, the step factorizes.
+  bool direction_from_last_factorization(const Eigen::VectorXd& residual, double tolerance, Eigen::VectorXd& du,
                                          Newton_report& report) const
   {
-    constexpr double max_forcing = 0.1;
+    constexpr double max_forcing = 0.1, final_margin = 1e-3;
     constexpr int max_preconditioned_solves = 8;
     const bool own = laplacian_.has_factorization();
     if(!own && borrowed_ == nullptr)
       return false;
     int solves = 0;
-    const bool solved = laplacian_.solve_preconditioned(residual, du, std::min(max_forcing, max_norm(residual)),
-                                                        max_preconditioned_solves, solves, own ? nullptr : borrowed_);
+    const double size = max_norm(residual);
+    const double forcing = std::min(max_forcing, std::max(size, final_margin * tolerance / size));
+    const bool solved = laplacian_.solve_preconditioned(residual, du, forcing, max_preconditioned_solves, solves,
+                                                        own ? nullptr : borrowed_);
     report.preconditioned_solves += solves;
     return solved;
   }

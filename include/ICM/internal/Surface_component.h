@@ -139,11 +139,8 @@ bool border_wants_cones(const Mesh_index& index, const Metric& metric, const Cir
                         const std::vector<char>& is_singular, const Surface_parameterization_options& options,
                         const Linearized* linearized, Eigen::VectorXd& log_scale)
 {
-  std::vector<char> is_free(is_singular.size());
-  for(std::size_t v = 0; v < is_singular.size(); ++v)
-    is_free[v] = !is_singular[v];
   Eigen::VectorXd u = metric.u0;
-  Inverse_curvature_map<Solver, Metric> newton(index, metric, is_free);
+  Inverse_curvature_map<Solver, Metric> newton(index, metric, free_vertices_off(is_singular));
   Eigen::VectorXd first_step;
   if(linearized != nullptr)
   {
@@ -207,12 +204,8 @@ Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, st
 {
   if(!problem)
     return greedy_cones<Solver>(index, metric, seeds, options);
-  if(const Status checked = check_options(options); !checked.ok())
-  {
-    Cone_selection refused;
-    refused.message = checked.message;
-    return refused;
-  }
+  if(std::optional<Cone_selection> refused = refused_selection(options))
+    return *refused;
   return linearized_greedy_cones(*problem, index, seeds, options);
 }
 

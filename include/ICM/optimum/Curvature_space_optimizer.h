@@ -377,10 +377,7 @@ minimize_energy_on_singular_values(const internal::Mesh_index& index, const Metr
                                    const std::vector<char>& is_singular, const Energy& energy, Eigen::VectorXd& u,
                                    const Curvature_space_options& options = Curvature_space_options())
 {
-  std::vector<char> is_free(is_singular.size());
-  for(std::size_t v = 0; v < is_singular.size(); ++v)
-    is_free[v] = !is_singular[v];
-  Inverse_curvature_map<SparseSolver, Metric> dirichlet(index, metric, is_free);
+  Inverse_curvature_map<SparseSolver, Metric> dirichlet(index, metric, free_vertices_off(is_singular));
   return minimize_energy_on_singular_values(dirichlet, index, metric, energy, u, options);
 }
 

@@ -48,10 +48,7 @@ Newton_report free_boundary_optimum(const internal::Mesh_index& index, const Met
                                     const std::vector<char>& is_singular, Eigen::VectorXd& u,
                                     const Newton_options& options = Newton_options())
 {
-  std::vector<char> is_free(is_singular.size());
-  for(std::size_t v = 0; v < is_singular.size(); ++v)
-    is_free[v] = !is_singular[v];
-  Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, is_free);
+  Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, free_vertices_off(is_singular));
   return free_boundary_optimum(solver, metric, u, options);
 }
 
