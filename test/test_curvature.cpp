@@ -172,6 +172,21 @@ TEST(DynamicLaplacian, ConjugateGradientsOnAnEarlierFactorizationSolveTheCurrent
   EXPECT_EQ(lent_solves, solves);
   EXPECT_LT((lent - x).norm(), 1e-12 * exact.norm());
 
+  // Columns are separate runs sharing each triangular solve (the harmonic layout's two
+  // coordinates): the first column is the run above, a zero column stays zero, and a third
+  // column needs as many solves as the slowest.
+  Eigen::MatrixXd columns(laplacian.size(), 3), xs;
+  columns << b, Eigen::VectorXd::Zero(laplacian.size()), Eigen::VectorXd::LinSpaced(laplacian.size(), 3.0, -1.0);
+  int block_solves = 0, third_solves = 0;
+  ASSERT_TRUE(laplacian.solve_preconditioned(columns, xs, 1e-12, 20, block_solves));
+  Eigen::VectorXd third;
+  ASSERT_TRUE(laplacian.solve_preconditioned(Eigen::VectorXd(columns.col(2)), third, 1e-12, 20, third_solves));
+  EXPECT_EQ(block_solves, std::max(solves, third_solves));
+  EXPECT_LT((xs.col(0) - x).norm(), 1e-12 * exact.norm());
+  EXPECT_EQ(xs.col(1).norm(), 0.0);
+  EXPECT_LT((xs.col(2) - third).norm(), 1e-12 * third.norm());
+  EXPECT_LT((xs.col(2) - fresh.solve(Eigen::VectorXd(columns.col(2)))).norm(), 1e-9 * third.norm());
+
   laplacian.assemble(scaled(std::log(5.0), 4));
   EXPECT_FALSE(laplacian.solve_preconditioned(b, x, 1e-12, 3, solves));
   EXPECT_EQ(solves, 3);

@@ -15,6 +15,7 @@
 #include <ICM/layout/Border_overlaps.h>
 #include <ICM/layout/Chart_packing.h>
 #include <ICM/layout/Layout.h>
+#include <ICM/layout/Overlap_removal.h>
 #include <ICM/layout/Unflip.h>
 #include <ICM/internal/Box_pairs.h>
 #include <ICM/internal/Exact_predicates.h>
@@ -292,6 +293,50 @@ TEST(BorderOverlaps, FoldedInteriorVertexIsAFaceOverlapOnly)
   ASSERT_GT(non_positive_faces(index, uv), 0);
   EXPECT_EQ(ICM::count_border_overlaps(index, uv).crossing_pairs, 0);
   EXPECT_FALSE(ICM::overlapping_face_pairs(index, uv).empty());
+}
+
+// The overlap removal's shortcut: with every face positive, a simple border means no two
+// faces overlap (the degree argument), so the face test is skipped; it must agree with the
+// face test wherever no face is flipped, and decline wherever one is.
+TEST(BorderOverlaps, InjectiveByItsBorderExactlyWhenNoFacesOverlap)
+{
+  using ICM::internal::overlaps::is_injective_by_its_border;
+  const Polar_disk disk = polar_disk(6, 24);
+  const Mesh_index index = make_index(disk.plane, disk.faces);
+  EXPECT_TRUE(is_injective_by_its_border(index, disk.plane));
+  const Strip strip{40, 2};
+  const Mesh_index strip_index = strip.index();
+  for(double degrees : {300.0, 350.0, 440.0, 700.0})
+  {
+    const std::vector<Uv> uv = strip.spiral(degrees);
+    EXPECT_EQ(is_injective_by_its_border(strip_index, uv), ICM::overlapping_face_pairs(strip_index, uv).empty())
+      << degrees;
+  }
+  // Interior vertices jittered at random: some layouts flip faces (declined), the others
+  // agree with the face test.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int without_flips = 0, declined_with_flips = 0;
+  for(int trial = 0; trial < 200; ++trial)
+  {
+    const double spread = 0.05 + 0.25 * trial / 200.0; // from no flip to many
+    auto jitter = [&](std::mt19937& r) { return spread * unit(r); };
+    std::vector<Uv> uv = disk.plane;
+    for(int v = 0; v < index.number_of_vertices(); ++v)
+      if(!index.is_boundary_vertex[v])
+        uv[v] = {uv[v][0] + jitter(random), uv[v][1] + jitter(random)};
+    const bool injective = is_injective_by_its_border(index, uv);
+    if(non_positive_faces(index, uv) == 0)
+    {
+      ++without_flips;
+      EXPECT_EQ(injective, ICM::overlapping_face_pairs(index, uv).empty()) << trial;
+    }
+    else
+      declined_with_flips += !injective;
+    EXPECT_TRUE(!injective || ICM::overlapping_face_pairs(index, uv).empty()) << trial;
+  }
+  EXPECT_GT(without_flips, 10);
+  EXPECT_GT(declined_with_flips, 10);
 }
 
 // Loop 0 -> 1 -> 2 -> 3 with edge 30 leaving vertex 0 almost along edge 01: a needle at

@@ -324,7 +324,8 @@ public:
   /// shrinks the error by about epsilon / 2: a Newton step's weights, which move by a few
   /// percent, are solved to a Newton step's accuracy in a few triangular solves, where
   /// `solve_refined`, a fixed-point iteration, contracts by epsilon only and diverges past
-  /// epsilon = 1. Succeeds when |b - A x| <= `tolerance` |b|; returns false after
+  /// epsilon = 1. Succeeds when |b - A x| <= `tolerance` |b| in every column of b; returns
+  /// false after
   /// `max_iterations` solves, or on a direction of non-positive curvature (a Laplacian with
   /// negative weights may be indefinite). `iterations` counts the solves. `factorized`, when
   /// given, lends its last factorization instead (`numbers_unknowns_as(*factorized)`).
@@ -332,32 +333,44 @@ public:
   bool solve_preconditioned(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance,
                             int max_iterations, int& iterations, const Dynamic_laplacian* factorized = nullptr) const
   {
-    using Vector = typename Rhs::PlainObject;
+    // Each column of b is its own CG run; the columns share every triangular solve, which
+    // costs little more for two columns than for one (the factor is read once).
+    using Plain = typename Rhs::PlainObject;
+    using Row = Eigen::Matrix<double, 1, Rhs::ColsAtCompileTime>;
     iterations = 0;
-    x = Vector::Zero(b.size());
+    x = Plain::Zero(b.rows(), b.cols());
     if(size() == 0)
       return true;
     const Dynamic_laplacian& lender = factorized != nullptr ? *factorized : *this;
     const SparseSolver& factor = lender.factorized_ ? *lender.solver_ : *lender.previous_;
-    const double target = tolerance * b.norm();
-    Vector r = b, z = factor.solve(r), p = z, q(b.size());
-    double rz = r.dot(z);
+    const Row target = tolerance * b.colwise().norm();
+    Plain r = b, z = factor.solve(r), p = z, q(b.rows(), b.cols());
+    Row rz = r.cwiseProduct(z).colwise().sum();
+    Eigen::Array<bool, 1, Rhs::ColsAtCompileTime> done = (r.colwise().norm().array() <= target.array());
     for(iterations = 1; iterations <= max_iterations; ++iterations)
     {
       q.noalias() = matrix_.template selfadjointView<Eigen::Upper>() * p;
-      const double curvature = p.dot(q);
-      if(!(curvature > 0.0))
-        return false;
-      const double step = rz / curvature;
-      x += step * p;
-      r -= step * q;
-      if(r.norm() <= target)
+      const Row curvature = p.cwiseProduct(q).colwise().sum();
+      for(Eigen::Index c = 0; c < b.cols(); ++c)
+      {
+        if(done(c))
+          continue;
+        if(!(curvature(c) > 0.0))
+          return false;
+        const double step = rz(c) / curvature(c);
+        x.col(c) += step * p.col(c);
+        r.col(c) -= step * q.col(c);
+        done(c) = r.col(c).norm() <= target(c);
+      }
+      if(done.all())
         return x.allFinite();
       if(iterations == max_iterations)
         break;
       z = factor.solve(r);
-      const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
+      const Row rz_next = r.cwiseProduct(z).colwise().sum();
+      for(Eigen::Index c = 0; c < b.cols(); ++c)
+        if(!done(c))
+          p.col(c) = z.col(c) + (rz_next(c) / rz(c)) * p.col(c);
       rz = rz_next;
     }
     return false;

@@ -267,6 +267,20 @@ inline std::pair<std::vector<int>, std::vector<int>> layers_to_separate(const Me
   return {first, second};
 }
 
+/// Whether the layout of `disk` is injective because every face is positively oriented and
+/// its border is a simple curve: a point off the border's image then has as many preimages as
+/// the border winds around it, at most one (the degree argument). It costs the border's
+/// crossings instead of every face's overlaps.
+inline bool is_injective_by_its_border(const Mesh_index& disk, const std::vector<Uv>& uv)
+{
+  if(!disk.is_disk())
+    return false;
+  for(const auto& f : disk.faces)
+    if(orientation(uv[f[0]], uv[f[1]], uv[f[2]]) <= 0)
+      return false;
+  return count_border_overlaps(disk, uv).empty();
+}
+
 /// Piece of each face of `disk` such that no two faces of a piece overlap in `uv`, by at most
 /// `max_cuts` minimum cuts. The overlapping pairs are found once: the pieces keep their
 /// UVs, so a cut only decides which pairs still share a piece. `remaining` receives the pairs
@@ -275,6 +289,11 @@ inline std::vector<int> pieces_without_overlaps(const Mesh_index& disk, const st
                                                 int& remaining)
 {
   std::vector<int> piece_of_face(disk.number_of_faces(), 0);
+  if(is_injective_by_its_border(disk, uv))
+  {
+    remaining = 0;
+    return piece_of_face;
+  }
   const std::vector<std::pair<int, int>> all_pairs = overlapping_face_pairs(disk, uv);
   std::vector<std::pair<int, int>> pairs = all_pairs;
   for(int cuts = 0; !pairs.empty() && cuts < max_cuts; ++cuts)
