@@ -325,10 +325,10 @@ public:
   /// percent, are solved to a Newton step's accuracy in a few triangular solves, where
   /// `solve_refined`, a fixed-point iteration, contracts by epsilon only and diverges past
   /// epsilon = 1. Succeeds when |b - A x| <= `tolerance` |b| in every column of b; returns
-  /// false after
-  /// `max_iterations` solves, or on a direction of non-positive curvature (a Laplacian with
-  /// negative weights may be indefinite). `iterations` counts the solves. `factorized`, when
-  /// given, lends its last factorization instead (`numbers_unknowns_as(*factorized)`).
+  /// false after `max_iterations` solves, or on a direction of non-positive curvature (a
+  /// Laplacian with negative weights may be indefinite). `iterations` counts the solves.
+  /// `factorized`, when given, lends its last factorization instead
+  /// (`numbers_unknowns_as(*factorized)`).
   template <class Rhs>
   bool solve_preconditioned(const Eigen::MatrixBase<Rhs>& b, typename Rhs::PlainObject& x, double tolerance,
                             int max_iterations, int& iterations, const Dynamic_laplacian* factorized = nullptr) const

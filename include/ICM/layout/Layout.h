@@ -268,8 +268,8 @@ constexpr int max_layout_preconditioned_solves = 12;
 /// interior. `laplacian` must have the interior vertices as its free set; it is assembled
 /// here with the weights `w` of the final metric. When it still holds a factorization of
 /// one of Newton's steps, conjugate gradients preconditioned by it solve both coordinates
-/// for a few triangular solves (lion-head Loop x3: 6, against a factorization three times
-/// their cost); otherwise, or past their budget, it is refactorized.
+/// for a few triangular solves, a fraction of a factorization's cost; otherwise, or past
+/// their budget, it is refactorized.
 template <class SparseSolver>
 bool layout_harmonic(const internal::Mesh_index& index, const std::vector<double>& lengths, const Eigen::VectorXd& k,
                      const std::vector<double>& w, Dynamic_laplacian<SparseSolver>& laplacian, std::vector<Uv>& uv,
