@@ -252,15 +252,29 @@ std::vector<Seam_method> make_seam_registry()
 //   icm_circle_domain         a genus-0 mesh with several loops onto nested circles, no cut
 //   icm_cones_4, _8, _16, _32 the whole pipeline with exactly that many cones: the area
 //                             distortion against the cone count (asked for by --methods)
-const std::vector<std::string> surface_methods = {
-  "icm",          "icm_keep_overlaps", "icm_free_boundary_opened", "icm_circle_domain", "icm_cones_4", "icm_cones_8",
-  "icm_cones_16", "icm_cones_32"};
+//   icm_u_square_cones_4, ... the same with the u-square energy choosing the cones' angles
+const std::vector<std::string> surface_methods = {"icm",
+                                                  "icm_keep_overlaps",
+                                                  "icm_free_boundary_opened",
+                                                  "icm_circle_domain",
+                                                  "icm_cones_4",
+                                                  "icm_cones_8",
+                                                  "icm_cones_16",
+                                                  "icm_cones_32",
+                                                  "icm_u_square_cones_4",
+                                                  "icm_u_square_cones_8",
+                                                  "icm_u_square_cones_16",
+                                                  "icm_u_square_cones_32"};
 
-// The cone count of an icm_cones_N row, or -1 for another name.
+const std::string u_square_cones_prefix = "icm_u_square_cones_";
+
+// The cone count of an icm_cones_N or icm_u_square_cones_N row, or -1 for another name.
 int exact_cone_count(const std::string& name)
 {
-  const std::string prefix = "icm_cones_";
-  return name.rfind(prefix, 0) == 0 ? std::stoi(name.substr(prefix.size())) : -1;
+  for(const std::string& prefix : {std::string("icm_cones_"), u_square_cones_prefix})
+    if(name.rfind(prefix, 0) == 0)
+      return std::stoi(name.substr(prefix.size()));
+  return -1;
 }
 
 // The methods drawn by --svg-panels, in this order.
@@ -304,7 +318,8 @@ const char* usage_text = "usage: compare [--json] [--runs N] [--time-limit SECON
                          "  --methods a,b      run only these methods (default: all); besides the registry's:\n"
                          "                     icm, icm_keep_overlaps, icm_free_boundary_opened, icm_cones_4,\n"
                          "                     icm_cones_8, icm_cones_16, icm_cones_32 (exactly that many\n"
-                         "                     cones); on a surface\n"
+                         "                     cones) and icm_u_square_cones_4, ..._32 (the same, the\n"
+                         "                     angles by u-square); on a surface\n"
                          "                     that is not a disk, icm_u_square, icm_area, icm_angle and\n"
                          "                     icm_log_area run ICM::parameterize with that energy\n"
                          "  --subdivide K      apply K steps of Loop subdivision to each mesh first\n"
@@ -457,7 +472,7 @@ struct Measures
 {
   double faces = NaN, flipped = NaN, degenerate = NaN;
   double conformality = NaN, angle_distortion = NaN, l2_shear = NaN, l2_stretch = NaN, log_area_distortion = NaN,
-         qc_mean = NaN, qc_max = NaN, area_ratio_min = NaN, area_ratio_max = NaN;
+         log_area_weighted = NaN, qc_mean = NaN, qc_max = NaN, area_ratio_min = NaN, area_ratio_max = NaN;
 };
 
 Measures to_measures(const ICM::Distortion_measures& d)
@@ -471,6 +486,7 @@ Measures to_measures(const ICM::Distortion_measures& d)
   m.l2_shear = d.l2_shear;
   m.l2_stretch = d.l2_stretch;
   m.log_area_distortion = d.log_area_distortion;
+  m.log_area_weighted = d.log_area_distortion_area_weighted;
   m.qc_mean = d.qc_mean;
   m.qc_max = d.qc_max;
   m.area_ratio_min = d.area_ratio_min;
@@ -562,6 +578,7 @@ std::string serialize(const Child_result& r)
                                                      {"l2_shear", m.l2_shear},
                                                      {"l2_stretch", m.l2_stretch},
                                                      {"log_area_distortion", m.log_area_distortion},
+                                                     {"log_area_weighted", m.log_area_weighted},
                                                      {"qc_mean", m.qc_mean},
                                                      {"qc_max", m.qc_max},
                                                      {"area_ratio_min", m.area_ratio_min},
@@ -636,6 +653,7 @@ Child_result deserialize(const std::string& text)
   m.l2_shear = num("m.l2_shear");
   m.l2_stretch = num("m.l2_stretch");
   m.log_area_distortion = num("m.log_area_distortion");
+  m.log_area_weighted = num("m.log_area_weighted");
   m.qc_mean = num("m.qc_mean");
   m.qc_max = num("m.qc_max");
   m.area_ratio_min = num("m.area_ratio_min");
@@ -1181,6 +1199,14 @@ Job icm_job(const Mesh& input, bool remove_overlaps, int exact_cones = -1)
   };
 }
 
+// The job of an icm, icm_keep_overlaps or exact-cone-count row.
+Job icm_pipeline_job(const Mesh& mesh, const std::string& name)
+{
+  if(name.rfind(u_square_cones_prefix, 0) == 0)
+    return icm_job<ICM::U_square>(mesh, true, exact_cone_count(name));
+  return icm_job(mesh, name != "icm_keep_overlaps", exact_cone_count(name));
+}
+
 // A CGAL method on the mesh cut along `seams` (edge indices of the mesh): a CGAL::Seam_mesh,
 // its longest border (the cut, plus the holes it joins) as the border halfedge, one UV per
 // seam-mesh vertex stored at its halfedge. The cut must make one disk; else the row says so.
@@ -1273,6 +1299,7 @@ void print_json(const Row& r, std::ostream& out = std::cout)
   o["l2_shear"] = h ? json_num(m.l2_shear) : Json();
   o["l2_stretch"] = h ? json_num(m.l2_stretch) : Json();
   o["log_area_distortion"] = h ? json_num(m.log_area_distortion) : Json();
+  o["log_area_distortion_area_weighted"] = h ? json_num(m.log_area_weighted) : Json();
   o["qc_mean"] = h ? json_num(m.qc_mean) : Json();
   o["qc_max"] = h ? json_num(m.qc_max) : Json();
   o["area_ratio_min"] = h ? json_num(m.area_ratio_min) : Json();
@@ -1669,7 +1696,7 @@ void run_surface(const Mesh& mesh, const Topology& topology, Row base, const Opt
     {
       progress(name);
       Child_result result;
-      row = run_job(icm_job(mesh, name != "icm_keep_overlaps", exact_cone_count(name)), name, opt, base, &result);
+      row = run_job(icm_pipeline_job(mesh, name), name, opt, base, &result);
       add_icm_report(row, result);
       progress_done(row);
     }
@@ -1864,7 +1891,7 @@ int main(int argc, char** argv)
       else if(name == "icm" || name == "icm_keep_overlaps" || exact_cone_count(name) >= 0)
       {
         Child_result result;
-        row = run_job(icm_job(mesh, name != "icm_keep_overlaps", exact_cone_count(name)), name, opt, base, &result);
+        row = run_job(icm_pipeline_job(mesh, name), name, opt, base, &result);
         add_icm_report(row, result);
       }
       else

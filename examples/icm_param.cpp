@@ -569,6 +569,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   }
   j["flipped_faces"] = measures.flipped_faces;
   j["log_area_distortion"] = measures.log_area_distortion;
+  j["log_area_distortion_area_weighted"] = measures.log_area_distortion_area_weighted;
   j["area_ratio_min"] = measures.area_ratio_min;
   j["area_ratio_max"] = measures.area_ratio_max;
   j["qc_mean"] = measures.qc_mean;

@@ -298,6 +298,49 @@ TEST(BorderOverlaps, FoldedInteriorVertexIsAFaceOverlapOnly)
 // The overlap removal's shortcut: with every face positive, a simple border means no two
 // faces overlap (the degree argument), so the face test is skipped; it must agree with the
 // face test wherever no face is flipped, and decline wherever one is.
+TEST(OverlapRemoval, PiecesJoinAgainWhereNothingOverlapsAcrossThem)
+{
+  // A strip of 10 columns, two faces each (faces 2i and 2i + 1 in column i), cut into
+  // columns 0-3, column 4 (a sliver of two faces) and columns 5-9.
+  using ICM::internal::overlaps::join_pieces_that_do_not_overlap;
+  const Strip strip{10, 1};
+  const Mesh_index index = strip.index();
+  const std::vector<int> cut = [] {
+    std::vector<int> piece(20);
+    for(int f = 0; f < 20; ++f)
+      piece[f] = f < 8 ? 0 : f < 10 ? 1 : 2;
+    return piece;
+  }();
+  auto joined = [&](const std::vector<std::pair<int, int>>& pairs) {
+    std::vector<int> piece = cut;
+    join_pieces_that_do_not_overlap(index, pairs, piece);
+    for(const auto& [f, g] : pairs)
+      EXPECT_NE(piece[f], piece[g]) << f << " and " << g << " overlap and share a piece";
+    const int pieces = 1 + *std::max_element(piece.begin(), piece.end());
+    for(int p = 0; p < pieces; ++p)
+      EXPECT_NE(std::find(piece.begin(), piece.end(), p), piece.end()) << "piece numbers are not contiguous";
+    for(int f = 1; f < 20; ++f) // joined along the strip: every piece stays a run of columns
+      EXPECT_TRUE(piece[f] == piece[f - 1] ||
+                  std::find(piece.begin(), piece.begin() + f, piece[f]) == piece.begin() + f);
+    return piece;
+  };
+  // Only the ends overlap: the sliver joins a neighbour, the ends stay apart.
+  std::vector<int> piece = joined({{0, 19}});
+  EXPECT_EQ(*std::max_element(piece.begin(), piece.end()), 1);
+  EXPECT_TRUE(piece[8] == piece[0] || piece[8] == piece[19]);
+  // The sliver overlaps the first piece: it can join only the last one.
+  piece = joined({{0, 19}, {8, 0}});
+  EXPECT_EQ(*std::max_element(piece.begin(), piece.end()), 1);
+  EXPECT_EQ(piece[8], piece[19]);
+  EXPECT_EQ(piece[9], piece[19]);
+  // It overlaps both: nothing joins.
+  piece = joined({{0, 19}, {8, 0}, {9, 19}});
+  EXPECT_EQ(piece, cut);
+  // Nothing overlaps: one piece again.
+  piece = joined({});
+  EXPECT_EQ(piece, std::vector<int>(20, 0));
+}
+
 TEST(BorderOverlaps, InjectiveByItsBorderExactlyWhenNoFacesOverlap)
 {
   using ICM::internal::overlaps::is_injective_by_its_border;

@@ -29,6 +29,8 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <set>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -281,6 +283,83 @@ inline bool is_injective_by_its_border(const Mesh_index& disk, const std::vector
   return count_border_overlaps(disk, uv).empty();
 }
 
+/// Joins pieces again where no overlapping pair of `pairs` would share the joined piece, the
+/// smallest piece first (by faces), each into the neighbour it shares the longest border with.
+/// The cuts are made one pair of layers at a time, so a piece cut off early, often a single
+/// face, no longer overlaps the piece next to it once a later cut took away what it covered.
+/// The pieces keep the chart's UVs, so a join is exact: it only gives the seam back.
+inline void join_pieces_that_do_not_overlap(const Mesh_index& disk, const std::vector<std::pair<int, int>>& pairs,
+                                            std::vector<int>& piece_of_face)
+{
+  const int pieces = 1 + *std::max_element(piece_of_face.begin(), piece_of_face.end());
+  // Per piece: the border length it shares with each neighbour, and the pieces it overlaps.
+  // A join merges the smaller tables into the larger, so the pass costs O(E + pairs) once
+  // and a near-linear amount of table work after.
+  std::vector<std::map<int, double>> shared(pieces);
+  std::vector<std::set<int>> overlapped(pieces);
+  for(int e = 0; e < disk.number_of_edges(); ++e)
+  {
+    const int f = disk.edge_faces[e][0], h = disk.edge_faces[e][1];
+    if(h < 0 || piece_of_face[f] == piece_of_face[h])
+      continue;
+    const double length = edge_length(disk, e);
+    shared[piece_of_face[f]][piece_of_face[h]] += length;
+    shared[piece_of_face[h]][piece_of_face[f]] += length;
+  }
+  for(const auto& [f, g] : pairs)
+    if(piece_of_face[f] != piece_of_face[g])
+    {
+      overlapped[piece_of_face[f]].insert(piece_of_face[g]);
+      overlapped[piece_of_face[g]].insert(piece_of_face[f]);
+    }
+  std::vector<int> faces(pieces, 0), root(pieces);
+  for(int p : piece_of_face)
+    ++faces[p];
+  std::iota(root.begin(), root.end(), 0);
+  std::vector<int> order = root;
+  std::sort(order.begin(), order.end(), [&faces](int a, int b) { return faces[a] < faces[b]; });
+  for(int p : order)
+  {
+    if(root[p] != p)
+      continue; // already joined into another piece
+    int best = -1;
+    for(const auto& [q, length] : shared[p])
+      if(!overlapped[p].count(q) && (best < 0 || length > shared[p][best]))
+        best = q;
+    if(best < 0)
+      continue;
+    // Keep the piece with the larger tables; the other's entries move to it and every
+    // neighbour's entry for the removed piece is renamed.
+    const int keep =
+      shared[p].size() + overlapped[p].size() >= shared[best].size() + overlapped[best].size() ? p : best;
+    const int gone = keep == p ? best : p;
+    for(const auto& [q, length] : shared[gone])
+    {
+      shared[q].erase(gone);
+      if(q == keep)
+        continue;
+      shared[keep][q] += length;
+      shared[q][keep] += length;
+    }
+    shared[keep].erase(gone);
+    for(int q : overlapped[gone])
+    {
+      overlapped[q].erase(gone);
+      overlapped[q].insert(keep);
+      overlapped[keep].insert(q);
+    }
+    shared[gone].clear();
+    overlapped[gone].clear();
+    for(int& r : root)
+      if(r == gone)
+        r = keep;
+    faces[keep] += faces[gone];
+  }
+  std::map<int, int> number_of_root;
+  for(int& p : piece_of_face)
+    p = number_of_root.emplace(root[p], static_cast<int>(number_of_root.size())).first->second;
+}
+
 /// Piece of each face of `disk` such that no two faces of a piece overlap in `uv`, by at most
 /// `max_cuts` minimum cuts. The overlapping pairs are found once: the pieces keep their
 /// UVs, so a cut only decides which pairs still share a piece. `remaining` receives the pairs
@@ -318,6 +397,7 @@ inline std::vector<int> pieces_without_overlaps(const Mesh_index& disk, const st
       if(piece_of_face[pair.first] == piece_of_face[pair.second])
         pairs.push_back(pair);
   }
+  join_pieces_that_do_not_overlap(disk, all_pairs, piece_of_face);
   remaining = static_cast<int>(pairs.size());
   return piece_of_face;
 }

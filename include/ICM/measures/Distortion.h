@@ -23,6 +23,8 @@
 //   l2_shear            = sqrt( sum_f A_f (s1/s2 + s2/s1 - 2) / sum_f A_f ),  s = |sigma|
 //   l2_stretch          = sqrt( sum_f A_f (1/s1^2 + 1/s2^2) / 2 / sum_f A_f )  (Sander 2001)
 //   log_area_distortion = mean_f log^2(|s_f| / A_f)         (paper eq. 8 divided by #faces)
+//   log_area_distortion_area_weighted = sum_f A_f log^2(|s_f| / A_f) / sum_f A_f
+//                         (the integral over the surface: BFF's and CEPS's papers report it)
 //   area_ratio_min/max  = min/max of |s_f| / A_f
 //   qc_mean / qc_max    = area-weighted mean / max of s1/s2
 #ifndef ICM_MEASURES_DISTORTION_H
@@ -63,6 +65,7 @@ struct Distortion_measures
   double l2_shear = 0;
   double l2_stretch = 0;
   double log_area_distortion = 0;
+  double log_area_distortion_area_weighted = 0;
   double qc_mean = 0;
   double qc_max = 0;
   double area_ratio_min = 0;
@@ -242,6 +245,7 @@ public:
     stretch_.add(j.area_3d * stretch);
     qc_.add(j.area_3d * qc);
     log_area_.add(log_ratio * log_ratio);
+    weighted_log_area_.add(j.area_3d * log_ratio * log_ratio);
     ++log_area_faces_;
     result_.qc_max = std::max(result_.qc_max, qc);
     ratio_min_ = std::min(ratio_min_, abs_det);
@@ -262,6 +266,7 @@ public:
       result_.l2_stretch = std::sqrt(stretch_.value() / shape_area);
       result_.qc_mean = qc_.value() / shape_area;
       result_.log_area_distortion = log_area_.value() / static_cast<double>(log_area_faces_);
+      result_.log_area_distortion_area_weighted = weighted_log_area_.value() / shape_area;
       result_.area_ratio_min = ratio_min_;
       result_.area_ratio_max = ratio_max_;
     }
@@ -271,7 +276,7 @@ public:
 private:
   Distortion_measures result_;
   Compensated_sum conformality_, mapped_area_, squared_angle_error_;
-  Compensated_sum shape_area_, shear_, stretch_, qc_, log_area_;
+  Compensated_sum shape_area_, shear_, stretch_, qc_, log_area_, weighted_log_area_;
   std::size_t log_area_faces_ = 0;
   std::size_t corners_ = 0;
   double ratio_min_ = std::numeric_limits<double>::infinity();
