@@ -518,10 +518,10 @@ def section_cones(data):
     for mesh, bff in BFF_8_CONES.items():
         cells = []
         for energy, _, _ in CONE_ENERGIES:
-            r = eight.get(mesh, {}).get(energy)
+            r = eight.get(os.path.splitext(mesh)[0], {}).get(energy)
             cells.append(f'{num(r.get("log_area_distortion_area_weighted"), 4)} ({integer(r.get("charts"))})'
                          if r else "")
-        out.append("| " + " | ".join([mesh, num(bff, 3)] + cells) + " |")
+        out.append("| " + " | ".join([os.path.splitext(mesh)[0], num(bff, 3)] + cells) + " |")
     figure = plot_cones(rows, CONES_PLOT)
     return "\n".join(out) + ("\n\n" + figure if figure else "")
 
