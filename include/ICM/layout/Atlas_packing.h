@@ -11,10 +11,10 @@
 //
 // Two packers of the boxes: today's shelves (Chart_packing.h), rows as wide as the square,
 // and the skyline packer of stb_rect_pack.h (Debian's libstb-dev), used when ICM was
-// configured with it (ICM_HAS_STB_RECT_PACK). On the shared meshes they tie: one chart is far
-// larger than the others, spans the square and sets the scale, and both fit the rest beside
-// it. Where many charts of like sizes share the square the skyline covers more of it, so it
-// is the default when present (doc/cli.md, Atlas mode).
+// configured with it (ICM_HAS_STB_RECT_PACK). On the shared meshes they tie: one or two charts
+// far larger than the rest span the square and set the scale, and both fit the rest beside
+// them. Where many charts of like sizes share the square the skyline covers more of it, so it
+// is the default when present (doc/benchmarks.md, Atlas packing).
 
 #ifndef ICM_LAYOUT_ATLAS_PACKING_H
 #define ICM_LAYOUT_ATLAS_PACKING_H
