@@ -6,7 +6,7 @@
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
 //             [--energy entropy|u-square|area|angle|log-area]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
-//             [--keep-overlaps]          (icm_param --help for all)
+//             [--keep-overlaps] [--atlas SIZE [--padding TEXELS]]   (icm_param --help for all)
 //
 // Every energy goes through ICM::parameterize (every surface, cones and seams where its
 // topology needs them): the curvature entropy (the default) directly, another energy
@@ -46,6 +46,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -88,6 +89,8 @@ struct Arguments
   std::string cone_placement = "linearized";
   bool cones_asked = false;                  // --cones auto or N > 0, or --cone-target given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
+  /// --atlas SIZE [--padding TEXELS] [--atlas-packer NAME]: unset, UVs in the mesh's units.
+  std::optional<ICM::Atlas_options> atlas;
 };
 
 const char* const usage =
@@ -96,6 +99,7 @@ const char* const usage =
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
   "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
   "         [--seams FILE.selection.txt] [--keep-overlaps]\n"
+  "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
   "       icm_param --help | --version\n";
 
 std::string version_text()
@@ -179,6 +183,32 @@ CLI::Validator cone_validator()
     "");
 }
 
+/// A whole number from `low` to `high` (a texel count), as `--atlas` and `--padding` take:
+/// parsed into `value`, or false.
+bool parse_texels(const std::string& v, long low, long high, int& value)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(v.c_str(), &end, 10);
+  if(v.empty() || *end != '\0' || errno != 0 || n < low || n > high)
+    return false;
+  value = static_cast<int>(n);
+  return true;
+}
+
+CLI::Validator texel_validator(const std::string& what, long low, long high)
+{
+  return CLI::Validator(
+    [what, low, high](std::string& v) -> std::string {
+      int value = 0;
+      return parse_texels(v, low, high, value)
+               ? std::string()
+               : "takes " + what + ", a whole number of texels from " + std::to_string(low) + " to " +
+                   std::to_string(high) + ", not '" + v + "'";
+    },
+    "");
+}
+
 /// A wrong command line: the reason, then the usage; exit code 2.
 int usage_error(const std::string& reason, const Failure_report& fail)
 {
@@ -230,6 +260,37 @@ std::string energy_conflict(const Arguments& args)
          ": a prescribed border is solved on the mesh as it is, without cones or seams";
 }
 
+/// The atlas options of `--atlas`, `--padding` and `--atlas-packer` (already checked one by
+/// one) into `args.atlas`; why they do not go together, or empty.
+std::string parse_atlas(const std::string& atlas_text, const std::string& padding_text, const std::string& packer_text,
+                        Arguments& args)
+{
+  if(atlas_text.empty())
+    return !padding_text.empty()  ? "--padding " + padding_text + " needs --atlas SIZE"
+           : !packer_text.empty() ? "--atlas-packer " + packer_text + " needs --atlas SIZE"
+                                  : std::string();
+  if(prescribes_border(args))
+    return "--atlas cannot go with --boundary " + args.boundary +
+           ": a prescribed border is laid out by the disk parameterizer, which packs no charts";
+  ICM::Atlas_options atlas;
+  parse_texels(atlas_text, 1, 65536, atlas.size);
+  if(!padding_text.empty())
+    parse_texels(padding_text, 0, 32767, atlas.padding);
+  if(!packer_text.empty())
+    atlas.packer = packer_text == "shelf" ? ICM::Atlas_packer::Shelf : ICM::Atlas_packer::Skyline;
+  if(const ICM::Status checked = ICM::check_options(atlas); !checked.ok())
+  {
+    if(atlas.padding > (atlas.size - 1) / 2)
+      return "--padding " + std::to_string(atlas.padding) + " leaves no texel for the charts in a " +
+             std::to_string(atlas.size) + " x " + std::to_string(atlas.size) + " atlas (" +
+             std::to_string(atlas.padding) + " on each side of " + std::to_string(atlas.size) +
+             "): it must be at most " + std::to_string((atlas.size - 1) / 2);
+    return checked.message;
+  }
+  args.atlas = atlas;
+  return {};
+}
+
 /// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
 /// --help or --version, 2 on a usage error, which `fail` has reported).
 int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report& fail)
@@ -241,7 +302,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                "icm_param");
   app.set_version_flag("--version", version_text());
   app.allow_extras(); // unknown options are reported below, by name
-  std::string cones_text;
+  std::string cones_text, atlas_text, padding_text, packer_text;
   std::vector<std::string> cone_texts;
   app.add_option("input", args.input, "mesh file: .off (and COFF, NOFF, STOFF, 4OFF), .obj, .ply, .stl")
     ->required()
@@ -291,6 +352,25 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.add_flag("--keep-overlaps", args.keep_overlaps,
                "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one "
                "chart is not cut, write a map that does rather than fail");
+  app
+    .add_option("--atlas", atlas_text,
+                "texture-ready UVs: every chart into the unit square for a SIZE x SIZE texture, all at one texel "
+                "density, charts turned by a quarter turn where that packs them larger")
+    ->check(texel_validator("the texture size", 1, 65536))
+    ->type_name("SIZE");
+  app
+    .add_option("--padding", padding_text,
+                "with --atlas: texels kept free between charts and from the square's border (default 4: a texel "
+                "apart down to the mipmap level of a quarter of the size)")
+    ->check(texel_validator("the padding", 0, 32767))
+    ->type_name("TEXELS");
+  app
+    .add_option(
+      "--atlas-packer", packer_text,
+      std::string("with --atlas: how the charts' boxes are packed, stb_rect_pack's skyline or shelves (default ") +
+        ICM::atlas_packer_name(ICM::default_atlas_packer()) + ")")
+    ->check(CLI::IsMember({"skyline", "shelf"}))
+    ->type_name("NAME");
   app.add_flag("--triangulate", args.triangulate, "triangulate polygons (otherwise they are refused)");
   app.add_flag("-q,--quiet", args.quiet, "no progress line on stderr for large meshes");
   try
@@ -333,6 +413,8 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   const std::string conflict = energy_conflict(args);
   if(!conflict.empty())
     return usage_error(conflict, fail);
+  if(const std::string atlas = parse_atlas(atlas_text, padding_text, packer_text, args); !atlas.empty())
+    return usage_error(atlas, fail);
   return -1;
 }
 
@@ -461,6 +543,9 @@ struct Run_figures
   std::string boundary = "free";
   int degenerate_faces = 0, border_iterations = 0;
   double circle_deviation = 0;
+  /// --atlas: the charts packed, those turned, the share of the square their triangles cover.
+  int atlas_charts = 0, atlas_rotated_charts = 0;
+  double atlas_utilization = 0;
 
   /// `ICM::parameterize`'s run of `energy_` with `seam_edges` cut (the energy over the
   /// components: `ICM::energy_summary`).
@@ -567,6 +652,15 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
     j["border_iterations"] = t.border_iterations;
     j["circle_deviation"] = t.circle_deviation;
   }
+  if(args.atlas)
+  {
+    j["atlas_size"] = args.atlas->size;
+    j["atlas_padding"] = args.atlas->padding;
+    j["atlas_packer"] = ICM::atlas_packer_name(args.atlas->packer);
+    j["atlas_charts"] = t.atlas_charts;
+    j["atlas_rotated_charts"] = t.atlas_rotated_charts;
+    j["atlas_utilization"] = t.atlas_utilization;
+  }
   j["flipped_faces"] = measures.flipped_faces;
   j["log_area_distortion"] = measures.log_area_distortion;
   j["log_area_distortion_area_weighted"] = measures.log_area_distortion_area_weighted;
@@ -599,6 +693,9 @@ void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figur
   if(t.optimized_energy)
     std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in " << t.energy_iterations
               << " steps, ";
+  if(args.atlas)
+    std::cerr << "atlas " << args.atlas->size << " texels, " << t.atlas_charts << " charts covering "
+              << 100 * t.atlas_utilization << "%, ";
   std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
             << t.seconds_parameterize << " s -> " << args.output << "\n";
 }
@@ -698,6 +795,7 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
 {
   ICM::Surface_parameterization_options options;
   options.remove_overlaps = !args.keep_overlaps;
+  options.atlas = args.atlas;
   if(args.max_cones >= 0)
   {
     options.automatic_cones = args.max_cones > 0;
@@ -736,6 +834,9 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
   if(report.status != SMP::OK)
     return std::string(ICM::error_message(report.status)) + ": " + report.message;
   figures.emplace(report, seams.size(), args.energy);
+  figures->atlas_charts = report.atlas_charts;
+  figures->atlas_rotated_charts = report.atlas_rotated_charts;
+  figures->atlas_utilization = report.atlas_utilization;
   figures->seam_length = seam_length_over_root_area(mesh, seams);
   return {};
 }

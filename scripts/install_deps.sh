@@ -6,7 +6,7 @@
 set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
           libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev doxygen python3 clang-format
-          libopenblas0-pthread)
+          libopenblas0-pthread libstb-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

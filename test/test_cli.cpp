@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "atlas_checks.h"
 #include "test_support.h"
 
 #include <algorithm>
@@ -777,6 +778,153 @@ TEST(Cli, ConeCountIsExactAndATargetStopsEarlier)
     const std::vector<std::string> files = box.listing();
     EXPECT_EQ(std::find(files.begin(), files.end(), "bad.obj"), files.end()) << bad;
   }
+}
+
+// --- --atlas ----------------------------------------------------------------------------
+
+/// The vt points and each face's vt indices (from 0) of an OBJ that icm_param wrote.
+void read_obj_uvs(const std::string& text, std::vector<icm_test::Uv2>& uv, std::vector<std::array<int, 3>>& corners)
+{
+  const std::regex face(R"(f \d+/(\d+) \d+/(\d+) \d+/(\d+))");
+  for(const std::string& line : lines_of(text))
+  {
+    std::smatch m;
+    if(line.rfind("vt ", 0) == 0)
+    {
+      std::istringstream in(line.substr(3));
+      icm_test::Uv2 p{};
+      in >> p[0] >> p[1];
+      uv.push_back(p);
+    }
+    else if(std::regex_match(line, m, face))
+      corners.push_back({std::stoi(m[1]) - 1, std::stoi(m[2]) - 1, std::stoi(m[3]) - 1});
+  }
+}
+
+/// icm_param --atlas SIZE --padding PADDING on `input`, checked from the OBJ it wrote alone:
+/// every UV in [0, 1], no triangle turned over, any two charts' triangles at least PADDING
+/// texels apart (and so their boxes, found from the UVs), the utilization the sum of the
+/// triangles' areas. Returns the JSON line.
+std::string expect_valid_atlas(const Sandbox& box, const std::string& input, int size, int padding,
+                               const std::string& more = "")
+{
+  const std::string json = json_line_of(box.run(quote(input) + " -o atlas.obj --json --atlas " + std::to_string(size) +
+                                                " --padding " + std::to_string(padding) + " " + more));
+  EXPECT_EQ(json_number(json, "atlas_size"), size);
+  EXPECT_EQ(json_number(json, "atlas_padding"), padding);
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  std::vector<icm_test::Uv2> uv;
+  std::vector<std::array<int, 3>> corners;
+  read_obj_uvs(read_text(box.file("atlas.obj")), uv, corners);
+  EXPECT_FALSE(corners.empty());
+  for(const icm_test::Uv2& p : uv)
+    for(double x : p)
+    {
+      EXPECT_GE(x, 0.0);
+      EXPECT_LE(x, 1.0);
+    }
+  const std::vector<std::vector<icm_test::Uv_triangle>> charts = icm_test::charts_of(uv, corners);
+  EXPECT_EQ(json_number(json, "atlas_charts"), static_cast<double>(charts.size()));
+  EXPECT_EQ(json_number(json, "charts"), static_cast<double>(charts.size()));
+  double area = 0;
+  const double texel = 1.0 / size, tolerance = 1e-6 * texel;
+  for(const auto& chart : charts)
+  {
+    const std::array<double, 4> b = icm_test::box_of(chart);
+    EXPECT_GE(std::min(b[0], b[1]), padding * texel - tolerance);
+    EXPECT_LE(std::max(b[2], b[3]), 1 - padding * texel + tolerance);
+    for(const icm_test::Uv_triangle& t : chart)
+    {
+      // The OBJ's UVs are the doubles computed (17 digits): no tolerance on the sign.
+      EXPECT_GT(icm_test::signed_area_of(t), 0.0);
+      area += std::abs(icm_test::signed_area_of(t));
+    }
+  }
+  EXPECT_NEAR(json_number(json, "atlas_utilization"), area, 1e-9 * area);
+  for(std::size_t i = 0; i < charts.size(); ++i)
+    for(std::size_t j = i + 1; j < charts.size(); ++j)
+    {
+      const double boxes = icm_test::box_distance(icm_test::box_of(charts[i]), icm_test::box_of(charts[j]));
+      const double triangles = icm_test::chart_distance(charts[i], charts[j], 2 * padding * texel);
+      EXPECT_GE(boxes * size, padding - 1e-6) << "charts " << i << " and " << j;
+      EXPECT_GE(triangles * size, padding - 1e-6) << "charts " << i << " and " << j;
+    }
+  return json;
+}
+
+TEST(Cli, AtlasPutsEveryChartInTheUnitSquarePaddedApart)
+{
+  Sandbox box;
+  // pig.off: three charts once its overlaps are cut apart.
+  for(const char* packer : {"skyline", "shelf"})
+  {
+    SCOPED_TRACE(packer);
+    const std::string json =
+      expect_valid_atlas(box, data_path("pig.off"), 256, 4, std::string("--atlas-packer ") + packer);
+    EXPECT_EQ(json_value(json, "atlas_packer"), std::string("\"") + packer + "\"");
+    EXPECT_GE(json_number(json, "atlas_charts"), 2);
+    EXPECT_GT(json_number(json, "atlas_utilization"), 0.2);
+  }
+  // No padding, and a wide padding on a small texture.
+  expect_valid_atlas(box, data_path("pig.off"), 1024, 0);
+  expect_valid_atlas(box, data_path("pig.off"), 64, 10);
+  // A closed genus-0 surface, cut through its cones.
+  expect_valid_atlas(box, data_path("sphere966.off"), 512, 3);
+}
+
+TEST(Cli, AtlasOfOneChartFillsTheSquareWithItsLongerSide)
+{
+  Sandbox box;
+  const int size = 512, padding = 4;
+  const std::string json = expect_valid_atlas(box, data_path("nefertiti.off"), size, padding);
+  EXPECT_EQ(json_number(json, "atlas_charts"), 1);
+  std::vector<icm_test::Uv2> uv;
+  std::vector<std::array<int, 3>> corners;
+  read_obj_uvs(read_text(box.file("atlas.obj")), uv, corners);
+  const std::array<double, 4> b = icm_test::box_of(icm_test::charts_of(uv, corners).at(0));
+  const double longer = std::max(b[2] - b[0], b[3] - b[1]);
+  EXPECT_NEAR(longer, (size - 2.0 * padding) / size, 1e-6);
+  EXPECT_NEAR(std::min(b[0], b[1]), static_cast<double>(padding) / size, 1e-6);
+}
+
+TEST(Cli, WithoutAtlasTheJsonHasNoAtlasFigures)
+{
+  Sandbox box;
+  const std::string json = json_line_of(box.run(quote(data_path("pig.off")) + " -o out.obj --json"));
+  EXPECT_EQ(json_value(json, "atlas_utilization"), "");
+  EXPECT_EQ(json_value(json, "atlas_size"), "");
+}
+
+TEST(Cli, AtlasRefusesBadValuesBeforeAnyWork)
+{
+  Sandbox box;
+  const std::string input = quote(data_path("pig.off"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+    {"--atlas 0", "--atlas: takes the texture size, a whole number of texels from 1 to 65536, not '0'"},
+    {"--atlas -16", "not '-16'"},
+    {"--atlas big", "not 'big'"},
+    {"--atlas 1.5", "not '1.5'"},
+    {"--atlas 100000", "not '100000'"},
+    {"--atlas 512 --padding -1", "--padding: takes the padding, a whole number of texels from 0 to 32767, not '-1'"},
+    {"--atlas 512 --padding four", "not 'four'"},
+    {"--atlas 8 --padding 4", "--padding 4 leaves no texel for the charts in a 8 x 8 atlas"},
+    {"--atlas 512 --padding 256", "it must be at most 255"},
+    {"--padding 4", "--padding 4 needs --atlas SIZE"},
+    {"--atlas 512 --atlas-packer guillotine", "--atlas-packer: guillotine not in"},
+    {"--atlas 512 --boundary circle", "--atlas cannot go with --boundary circle"}};
+  for(const auto& [arguments, reason] : cases)
+  {
+    SCOPED_TRACE(arguments);
+    const Sandbox::Result r = box.run(input + " -o out.obj " + arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(reason), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_TRUE(box.listing().empty());
+  }
+  // Found after the run (the charts are counted then): too many charts for the padding. With
+  // 7 texels of padding a 16-texel square holds one chart of one or two texels, not the
+  // three of pig.off.
+  expect_clean_failure(box, box.run(input + " -o out.obj --atlas 16 --padding 7"), "do not fit in a 16 x 16 atlas");
 }
 
 } // namespace

@@ -1,17 +1,19 @@
 // The layout stage (layout/): the propagation and harmonic layouts, the unflipping, the global
 // overlaps of a layout (Border_overlaps.h) and the packing of several charts into one UV map
-// (Chart_packing.h).
+// (Chart_packing.h), and into the unit square of a texture (Atlas_packing.h).
 //
 // Every mesh is built by hand so that the expected answer is known: a disk laid out as itself,
 // a strip bent along a spiral (past one turn it lies over itself although no face is flipped),
 // polygons with touching, collinear and one-ulp-apart border vertices, and random polygons
 // checked against an all-pairs count.
 
+#include "atlas_checks.h"
 #include "test_support.h"
 
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
+#include <ICM/layout/Atlas_packing.h>
 #include <ICM/layout/Border_overlaps.h>
 #include <ICM/layout/Chart_packing.h>
 #include <ICM/layout/Layout.h>
@@ -1095,4 +1097,195 @@ TEST(Unflip, KeepsABorderVertexNearItsOpenFan)
   EXPECT_EQ(ICM::count_flipped_faces(index, uv), 0);
   EXPECT_NEAR(uv[0][0], 0.0, 1e-12);
   EXPECT_NEAR(uv[0][1], 0.0, 1e-12);
+}
+
+// ------------------------------------------------------------------------------------------
+// Atlas packing
+
+namespace {
+
+std::vector<ICM::Atlas_packer> available_packers()
+{
+  std::vector<ICM::Atlas_packer> packers = {ICM::Atlas_packer::Shelf};
+  if(ICM::atlas_packer_available(ICM::Atlas_packer::Skyline))
+    packers.push_back(ICM::Atlas_packer::Skyline);
+  return packers;
+}
+
+/// A chart of 2 n^2 triangles filling the box [x, x + w] x [y, y + h], counterclockwise.
+struct Grid_chart
+{
+  std::vector<Uv> uv;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+Grid_chart grid_chart(double x, double y, double w, double h, int n)
+{
+  Grid_chart chart;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i)
+      chart.uv.push_back({x + w * i / n, y + h * j / n});
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i)
+    {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      chart.triangles.push_back({a, b, d});
+      chart.triangles.push_back({a, d, c});
+    }
+  return chart;
+}
+
+/// The charts moved by `packing`, as triangles in the atlas.
+std::vector<std::vector<icm_test::Uv_triangle>> packed_triangles(const std::vector<Grid_chart>& charts,
+                                                                 const ICM::Atlas_packing& packing)
+{
+  std::vector<std::vector<icm_test::Uv_triangle>> out(charts.size());
+  for(std::size_t c = 0; c < charts.size(); ++c)
+    for(const auto& t : charts[c].triangles)
+    {
+      icm_test::Uv_triangle placed;
+      for(int k = 0; k < 3; ++k)
+      {
+        const Uv& p = charts[c].uv[t[k]];
+        placed[k] = packing.placements[c]({packing.scale * p[0], packing.scale * p[1]});
+      }
+      out[c].push_back(placed);
+    }
+  return out;
+}
+
+/// Every triangle inside the padded square, counterclockwise, any two charts `padding`
+/// texels apart (triangles and boxes); returns the covered area.
+double expect_valid_atlas(const std::vector<std::vector<icm_test::Uv_triangle>>& charts,
+                          const ICM::Atlas_options& options)
+{
+  const double texel = 1.0 / options.size, tolerance = 1e-9;
+  double area = 0;
+  for(const auto& chart : charts)
+  {
+    const std::array<double, 4> b = icm_test::box_of(chart);
+    EXPECT_GE(std::min(b[0], b[1]), options.padding * texel - tolerance);
+    EXPECT_LE(std::max(b[2], b[3]), 1 - options.padding * texel + tolerance);
+    for(const auto& t : chart)
+    {
+      EXPECT_GT(icm_test::signed_area_of(t), 0.0);
+      area += icm_test::signed_area_of(t);
+    }
+  }
+  for(std::size_t i = 0; i < charts.size(); ++i)
+    for(std::size_t j = i + 1; j < charts.size(); ++j)
+    {
+      const double boxes = icm_test::box_distance(icm_test::box_of(charts[i]), icm_test::box_of(charts[j]));
+      const double triangles = icm_test::chart_distance(charts[i], charts[j], 2 * options.padding * texel);
+      EXPECT_GE(boxes * options.size, options.padding - 1e-6) << i << " " << j;
+      EXPECT_GE(triangles * options.size, options.padding - 1e-6) << i << " " << j;
+    }
+  return area;
+}
+
+} // namespace
+
+TEST(AtlasPacking, ChartsFitInTheSquarePaddedApartWithoutFlips)
+{
+  // Wide, tall and square charts of many sizes: the tall ones are worth a quarter turn.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> side(0.2, 3.0), position(-20, 20);
+  std::vector<Grid_chart> charts;
+  std::vector<ICM::Chart_box> boxes;
+  for(int c = 0; c < 40; ++c)
+  {
+    const double a = side(random), b = c % 3 == 0 ? a : 4 * side(random);
+    const double w = c % 3 == 1 ? b : a, h = c % 3 == 2 ? b : a;
+    charts.push_back(grid_chart(position(random), position(random), w, h, 3));
+    boxes.push_back(ICM::chart_bounding_box(charts.back().uv));
+  }
+  for(ICM::Atlas_packer packer : available_packers())
+    for(int padding : {0, 2, 8})
+    {
+      SCOPED_TRACE(std::string(ICM::atlas_packer_name(packer)) + ", padding " + std::to_string(padding));
+      ICM::Atlas_options options;
+      options.size = 512;
+      options.padding = padding;
+      options.packer = packer;
+      ICM::Atlas_packing packing;
+      ASSERT_TRUE(ICM::pack_atlas(boxes, options, packing).ok());
+      EXPECT_GT(packing.rotated_charts, 0);
+      const auto placed = packed_triangles(charts, packing);
+      const double area = expect_valid_atlas(placed, options);
+      // One scale: every chart's area is the same multiple of its own.
+      double before = 0;
+      for(const auto& b : boxes)
+        before += (b[2] - b[0]) * (b[3] - b[1]);
+      EXPECT_NEAR(area, packing.scale * packing.scale * before, 1e-9);
+      std::vector<std::vector<Uv>> uvs;
+      std::vector<std::vector<std::array<int, 3>>> triangles;
+      for(std::size_t c = 0; c < charts.size(); ++c)
+      {
+        uvs.push_back({});
+        for(const Uv& p : charts[c].uv)
+          uvs.back().push_back(packing.placements[c]({packing.scale * p[0], packing.scale * p[1]}));
+        triangles.push_back(charts[c].triangles);
+      }
+      EXPECT_NEAR(ICM::atlas_utilization(uvs, triangles), area, 1e-12);
+      // Boxes of random shapes: a packer wastes some of the square, not most of it.
+      EXPECT_GT(area, 0.4);
+      // Without turns the charts keep their orientation and still fit.
+      options.allow_rotation = false;
+      ASSERT_TRUE(ICM::pack_atlas(boxes, options, packing).ok());
+      EXPECT_EQ(packing.rotated_charts, 0);
+      for(const auto& placement : packing.placements)
+        EXPECT_FALSE(placement.rotated);
+      expect_valid_atlas(packed_triangles(charts, packing), options);
+    }
+}
+
+TEST(AtlasPacking, OneChartSpansTheSquareWithItsLongerSide)
+{
+  for(ICM::Atlas_packer packer : available_packers())
+    for(const ICM::Chart_box& box :
+        {ICM::Chart_box{2, 3, 4, 10}, ICM::Chart_box{-5, 0, 5, 1}, ICM::Chart_box{0, 0, 1, 1}})
+    {
+      ICM::Atlas_options options;
+      options.size = 256;
+      options.padding = 5;
+      options.packer = packer;
+      ICM::Atlas_packing packing;
+      ASSERT_TRUE(ICM::pack_atlas({box}, options, packing).ok());
+      const ICM::Chart_box scaled{packing.scale * box[0], packing.scale * box[1], packing.scale * box[2],
+                                  packing.scale * box[3]};
+      const ICM::Chart_box placed = ICM::placed_box(scaled, packing.placements[0]);
+      EXPECT_NEAR(std::max(placed[2] - placed[0], placed[3] - placed[1]), (256 - 10) / 256.0, 1e-12);
+      EXPECT_NEAR(std::min(placed[0], placed[1]), 5 / 256.0, 1e-12);
+    }
+}
+
+TEST(AtlasPacking, BadOptionsAndTooManyChartsAreRefusedByName)
+{
+  const std::vector<ICM::Chart_box> boxes(3, ICM::Chart_box{0, 0, 1, 1});
+  ICM::Atlas_packing packing;
+  const auto refusal = [&](int size, int padding) {
+    ICM::Atlas_options options;
+    options.size = size;
+    options.padding = padding;
+    const ICM::Status status = ICM::pack_atlas(boxes, options, packing);
+    EXPECT_EQ(status.code, CGAL::Surface_mesh_parameterization::ERROR_WRONG_PARAMETER);
+    return status.message;
+  };
+  EXPECT_EQ(refusal(0, 4), "option atlas.size = 0: must be >= 1");
+  EXPECT_EQ(refusal(-3, 4), "option atlas.size = -3: must be >= 1");
+  EXPECT_EQ(refusal(70000, 4), "option atlas.size = 70000: must be <= 65536");
+  EXPECT_EQ(refusal(64, -1), "option atlas.padding = -1: must be >= 0");
+  EXPECT_EQ(refusal(64, 32),
+            "option atlas.padding = 32: must be <= 31 so that a 64-texel square keeps at least one texel inside its "
+            "border");
+  // With 7 texels of padding a 16-texel square holds one chart of one or two texels, not three.
+  EXPECT_EQ(refusal(16, 7),
+            "option atlas.padding = 7: 3 charts of one texel each, 7 texels apart, do not fit in a 16 x 16 atlas");
+  // The same options through parameterize's own check, before any work.
+  ICM::Surface_parameterization_options options;
+  options.atlas = ICM::Atlas_options();
+  options.atlas->size = 0;
+  EXPECT_EQ(ICM::check_options(options).message, "option atlas.size = 0: must be >= 1");
+  options.atlas.reset();
+  EXPECT_TRUE(ICM::check_options(options).ok());
 }

@@ -5,7 +5,8 @@
 //   Chart_options                  what both entry points share: Newton, the energy's
 //   |                              optimizer, the layout check, the fallback metric
 //   +- Parameterization_options    `Inverse_curvature_map_parameterizer_3` (a disk)
-//   +- Surface_parameterization_options   `ICM::parameterize` (every surface): + cones
+//   +- Surface_parameterization_options   `ICM::parameterize` (every surface): + cones,
+//                                  + the atlas mode (`Atlas_options`)
 //
 // One `Newton_options` serves every stage of a run: the cone placement's and the energy
 // optimizer's own (`Cone_options::newton`, `Curvature_space_options::newton`) are unset unless
@@ -297,6 +298,73 @@ inline Status check_options(const Parameterization_options& options)
     .status();
 }
 
+/// How the charts' boxes are packed into the atlas.
+enum class Atlas_packer
+{
+  /// Rows of boxes, tallest first, each row the square's width (Chart_packing.h's shelves).
+  Shelf,
+  /// stb_rect_pack's skyline bottom-left packer; only when ICM_HAS_STB_RECT_PACK.
+  Skyline
+};
+
+/// Whether this build can pack with `packer`.
+inline bool atlas_packer_available(Atlas_packer packer)
+{
+#ifdef ICM_HAS_STB_RECT_PACK
+  return packer == Atlas_packer::Shelf || packer == Atlas_packer::Skyline;
+#else
+  return packer == Atlas_packer::Shelf;
+#endif
+}
+
+inline const char* atlas_packer_name(Atlas_packer packer)
+{
+  return packer == Atlas_packer::Skyline ? "skyline" : "shelf";
+}
+
+/// The packer that covered more of the square on the shared meshes, when this build has it
+/// (layout/Atlas_packing.h).
+inline constexpr Atlas_packer default_atlas_packer()
+{
+#ifdef ICM_HAS_STB_RECT_PACK
+  return Atlas_packer::Skyline;
+#else
+  return Atlas_packer::Shelf;
+#endif
+}
+
+/// Atlas mode (`Surface_parameterization_options::atlas`): the UVs in [0, 1]^2.
+struct Atlas_options
+{
+  /// Texels per side of the square texture the atlas is for. At most 65536: beyond every
+  /// GPU's texture limit, and texel coordinates stay far from the packers' int range.
+  int size = 1024;
+  /// Texels kept free between any two charts and between a chart and the square's border.
+  /// 4 by default: bilinear filtering reads one texel beyond a chart's edge, and each mipmap
+  /// level halves the padding, so 4 texels keep charts a texel apart down to the level of a
+  /// quarter of the size; on atlases of 512 texels and more it costs little area.
+  int padding = 4;
+  /// Charts may be turned by a quarter turn (a rotation: orientation is kept, nothing
+  /// flips) when that packs them at a larger scale.
+  bool allow_rotation = true;
+  Atlas_packer packer = default_atlas_packer();
+};
+
+inline Status check_options(const Atlas_options& options, const std::string& prefix = "atlas.")
+{
+  internal::Option_checks checks(prefix);
+  checks.at_least("size", options.size, 1).at_most("size", options.size, 65536).at_least("padding", options.padding, 0);
+  if(options.size >= 1)
+    checks.at_most("padding", options.padding, (options.size - 1) / 2,
+                   "so that a " + std::to_string(options.size) +
+                     "-texel square keeps at least one texel inside its border");
+  checks.one_of("packer", options.packer, 2);
+  if(checks.status().ok() && !atlas_packer_available(options.packer))
+    return Status::wrong_parameter("option " + prefix + "packer = " + atlas_packer_name(options.packer) +
+                                   ": ICM was built without stb_rect_pack.h (Debian: libstb-dev)");
+  return checks.status();
+}
+
 /// Options of `ICM::parameterize`.
 struct Surface_parameterization_options : Chart_options
 {
@@ -324,12 +392,18 @@ struct Surface_parameterization_options : Chart_options
   /// far, 0 to 1 (components weighted by their faces; within one, a fixed share per stage).
   /// For a progress line on long runs; it must not throw.
   std::function<void(const std::string& stage, double fraction)> progress;
+  /// Unset (the default): the charts side by side at their 3D scale, UVs in the mesh's
+  /// units from (0, 0). Set: every chart into [0, 1]^2 for a texture of `atlas->size`
+  /// texels, at one texel density, `atlas->padding` texels apart (layout/Atlas_packing.h);
+  /// the report gives the share of the square covered (`atlas_utilization`).
+  std::optional<Atlas_options> atlas;
 };
 
 inline Status check_options(const Surface_parameterization_options& options)
 {
   return internal::Option_checks()
     .nested(check_options(static_cast<const Chart_options&>(options)))
+    .nested(options.atlas ? check_options(*options.atlas) : Status::success())
     .nested(check_options(options.cones))
     .at_least("initial_cones", options.initial_cones, 0)
     .real("border_max_log_scale", options.border_max_log_scale, 0, true)

@@ -127,6 +127,11 @@ struct Surface_parameterization_report
   /// `seconds_index`: the components read into flat arrays and their elimination orders.
   double seconds_index = 0, seconds_cones = 0, seconds_optimum = 0, seconds_cut = 0, seconds_layout = 0,
          seconds_total = 0;
+  /// Atlas mode only (`Surface_parameterization_options::atlas`): the charts packed (the
+  /// pieces of every component), how many were turned by a quarter turn, and the share of
+  /// the unit square that their UV triangles cover (sum of the triangles' areas).
+  int atlas_charts = 0, atlas_rotated_charts = 0;
+  double atlas_utilization = 0;
 };
 
 /// An energy's figures over every component of a report: the optimizer's steps summed, E at

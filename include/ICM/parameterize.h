@@ -12,7 +12,8 @@
 //                             metric, both sides of a seam one length (layout/) -> checks:
 //                             orientation, lengths, seams, border overlaps
 // (internal/Surface_component.h), and the charts are then packed side by side
-// (layout/Chart_packing.h). Options and reports: Options.h, Report.h. See
+// (layout/Chart_packing.h), or into the unit square of a texture (`options.atlas`,
+// layout/Atlas_packing.h). Options and reports: Options.h, Report.h. See
 // doc/surfaces.md.
 
 #ifndef ICM_PARAMETERIZE_H
@@ -49,7 +50,8 @@ namespace ICM {
 /// \brief Parameterizes any triangle mesh: every connected component is cut into a disk
 /// through its cones (chosen automatically, or the user's), laid out with the minimum of the
 /// curvature entropy in the class of `Metric` (or of `Energy` over the same border and
-/// cones), and the charts are packed side by side at their 3D scale.
+/// cones), and the charts are packed side by side at their 3D scale (with `options.atlas`,
+/// into [0, 1]^2 at one scale, padded apart in texels).
 ///
 /// \tparam TriangleMesh a model of `FaceGraph`
 /// \tparam HalfedgeUVMap a writable property map from `halfedge_descriptor` to a 2D point:
@@ -174,7 +176,10 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
             edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
   }
 
-  internal::pack_and_write_charts(mesh, chart_faces, cuts, chart_uvs, normalisation, uv_map);
+  if(const Status packed = internal::pack_and_write_charts(mesh, chart_faces, cuts, chart_uvs, normalisation, uv_map,
+                                                           options.atlas, report);
+     !packed.ok())
+    return finish(packed.code, packed.message);
   if(options.progress)
     options.progress("done", 1.0);
   return finish(OK, "");

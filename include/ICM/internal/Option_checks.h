@@ -46,6 +46,13 @@ public:
       fail(name, std::to_string(value), "must be >= " + std::to_string(low));
     return *this;
   }
+  /// An integer <= `high`; `why`, when given, says what the bound keeps.
+  Option_checks& at_most(const char* name, long long value, long long high, const std::string& why = std::string())
+  {
+    if(value > high)
+      fail(name, std::to_string(value), "must be <= " + std::to_string(high) + (why.empty() ? "" : " " + why));
+    return *this;
+  }
   /// An enumerator among the `count` first values of its enumeration.
   template <class Enum>
   Option_checks& one_of(const char* name, Enum value, int count)

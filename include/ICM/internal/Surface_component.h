@@ -12,6 +12,7 @@
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/cut/Cut_graph.h>
+#include <ICM/layout/Atlas_packing.h>
 #include <ICM/layout/Border_overlaps.h>
 #include <ICM/layout/Chart_packing.h>
 #include <ICM/layout/Layout.h>
@@ -33,7 +34,9 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -467,34 +470,117 @@ void component_cones_and_seams(
     component_seams.clear();
 }
 
+/// Each chart at its 3D scale: UV area = 3D area (normalised units).
+inline void scale_to_3d_area(const Mesh_index& disk, std::vector<Uv>& uv)
+{
+  double uv_area = 0, area = 0;
+  for(const auto& f : disk.faces)
+  {
+    uv_area += 0.5 * twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]);
+    area += triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
+  }
+  const double scale = std::sqrt(area / uv_area);
+  for(Uv& p : uv)
+    p = {p[0] * scale, p[1] * scale};
+}
+
+/// The connected pieces of a cut disk (the overlap removal's pieces share no wedge): the
+/// piece of each wedge, and their count.
+inline int wedge_pieces(const Mesh_index& disk, std::vector<int>& piece_of_wedge)
+{
+  std::vector<int> parent(disk.number_of_vertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&parent](int v) {
+    while(parent[v] != v)
+      v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for(const auto& f : disk.faces)
+    for(int c = 1; c < 3; ++c)
+      parent[root(f[c])] = root(f[0]);
+  piece_of_wedge.assign(parent.size(), -1);
+  std::vector<int> piece_of_root(parent.size(), -1);
+  int pieces = 0;
+  for(const auto& f : disk.faces)
+    for(int v : f)
+    {
+      int& piece = piece_of_root[root(v)];
+      if(piece < 0)
+        piece = pieces++;
+      piece_of_wedge[v] = piece;
+    }
+  return pieces;
+}
+
+/// Atlas mode: every piece of every chart into [0, 1]^2 (layout/Atlas_packing.h), in place;
+/// the figures into `report`. Fails when the pieces do not fit at one texel each.
+inline Status pack_atlas_charts(const std::vector<Cut_mesh>& cuts, std::vector<std::vector<Uv>>& chart_uvs,
+                                const Atlas_options& options, Surface_parameterization_report& report)
+{
+  std::vector<std::vector<int>> piece_of_wedge(cuts.size());
+  std::vector<int> first_piece(cuts.size() + 1, 0);
+  for(std::size_t c = 0; c < cuts.size(); ++c)
+    first_piece[c + 1] = first_piece[c] + wedge_pieces(cuts[c].disk, piece_of_wedge[c]);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<Chart_box> boxes(first_piece.back(), Chart_box{inf, inf, -inf, -inf});
+  for(std::size_t c = 0; c < cuts.size(); ++c)
+    for(std::size_t w = 0; w < chart_uvs[c].size(); ++w)
+      if(piece_of_wedge[c][w] >= 0)
+      {
+        Chart_box& b = boxes[first_piece[c] + piece_of_wedge[c][w]];
+        const Uv& p = chart_uvs[c][w];
+        b = {std::min(b[0], p[0]), std::min(b[1], p[1]), std::max(b[2], p[0]), std::max(b[3], p[1])};
+      }
+  Atlas_packing packing;
+  if(const Status packed = pack_atlas(boxes, options, packing); !packed.ok())
+    return packed;
+  std::vector<std::vector<std::array<int, 3>>> triangles(cuts.size());
+  for(std::size_t c = 0; c < cuts.size(); ++c)
+  {
+    for(std::size_t w = 0; w < chart_uvs[c].size(); ++w)
+      if(piece_of_wedge[c][w] >= 0)
+      {
+        const Uv& p = chart_uvs[c][w];
+        chart_uvs[c][w] =
+          packing.placements[first_piece[c] + piece_of_wedge[c][w]]({packing.scale * p[0], packing.scale * p[1]});
+      }
+    triangles[c] = cuts[c].disk.faces;
+  }
+  report.atlas_charts = static_cast<int>(boxes.size());
+  report.atlas_rotated_charts = packing.rotated_charts;
+  report.atlas_utilization = atlas_utilization(chart_uvs, triangles);
+  return Status::success();
+}
+
 /// The charts side by side, each at its 3D scale (UV area = 3D area, normalised units), and
-/// their UVs written per corner of `mesh` in its units.
+/// their UVs written per corner of `mesh` in its units; with `atlas`, every chart into
+/// [0, 1]^2 instead (`pack_atlas_charts`), written as they are.
 template <class TriangleMesh, class HalfedgeUVMap>
-void pack_and_write_charts(
+Status pack_and_write_charts(
   const TriangleMesh& mesh,
   const std::vector<std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>>& chart_faces,
   const std::vector<Cut_mesh>& cuts, std::vector<std::vector<Uv>>& chart_uvs, const Normalisation& normalisation,
-  HalfedgeUVMap uv_map)
+  HalfedgeUVMap uv_map, const std::optional<Atlas_options>& atlas, Surface_parameterization_report& report)
 {
   using halfedge_descriptor = typename boost::graph_traits<TriangleMesh>::halfedge_descriptor;
   const std::size_t components = chart_uvs.size();
-  std::vector<Chart_box> boxes;
   for(std::size_t c = 0; c < components; ++c)
+    scale_to_3d_area(cuts[c].disk, chart_uvs[c]);
+  std::vector<Uv> offsets(components, Uv{0.0, 0.0});
+  double units = 1; // of the written UVs, per normalised unit
+  if(atlas)
   {
-    const Mesh_index& disk = cuts[c].disk;
-    double uv_area = 0, area = 0;
-    for(const auto& f : disk.faces)
-    {
-      const Uv &a = chart_uvs[c][f[0]], &b = chart_uvs[c][f[1]], &d = chart_uvs[c][f[2]];
-      uv_area += 0.5 * twice_signed_area(a, b, d);
-      area += triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
-    }
-    const double scale = std::sqrt(area / uv_area);
-    for(Uv& p : chart_uvs[c])
-      p = {p[0] * scale, p[1] * scale};
-    boxes.push_back(chart_bounding_box(chart_uvs[c]));
+    if(const Status packed = pack_atlas_charts(cuts, chart_uvs, *atlas, report); !packed.ok())
+      return packed;
   }
-  const std::vector<Uv> offsets = shelf_pack(boxes);
+  else
+  {
+    std::vector<Chart_box> boxes;
+    for(std::size_t c = 0; c < components; ++c)
+      boxes.push_back(chart_bounding_box(chart_uvs[c]));
+    offsets = shelf_pack(boxes);
+    units = normalisation.scale;
+  }
 
   using Uv_point = typename boost::property_traits<HalfedgeUVMap>::value_type;
   for(std::size_t c = 0; c < components; ++c)
@@ -504,7 +590,7 @@ void pack_and_write_charts(
       for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(chart_faces[c][f], mesh), mesh))
       {
         const Uv& p = chart_uvs[c][cuts[c].disk.faces[f][corner++]];
-        const Uv_point q(normalisation.scale * (p[0] + offsets[c][0]), normalisation.scale * (p[1] + offsets[c][1]));
+        const Uv_point q(units * (p[0] + offsets[c][0]), units * (p[1] + offsets[c][1]));
         put(uv_map, h, q);
         // The border halfedge into the same vertex, if any, shares this corner's wedge when
         // it is the corner next to the border.
@@ -513,6 +599,7 @@ void pack_and_write_charts(
           put(uv_map, prev(out, mesh), q);
       }
     }
+  return Status::success();
 }
 
 } // namespace internal
