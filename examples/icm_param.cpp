@@ -1,8 +1,9 @@
 // icm_param: parameterize any triangle mesh file with the inverse curvature map (cones and
 // seams where its topology needs them, one chart per connected component) and write the UV'd
-// OBJ (a vt per corner side of every seam), optionally an SVG of the layout and a JSON line.
+// mesh (OBJ with a vt per corner side of every seam, PLY with per-corner texcoords, or glTF
+// split at the seams, by the extension of -o), optionally an SVG of the layout and a JSON line.
 //
-//   icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]
+//   icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--json] [--triangulate] [--quiet]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
 //             [--energy entropy|u-square|area|angle|log-area]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
@@ -17,8 +18,9 @@
 // repaired only as users expect (isolated vertices dropped, non-manifold vertices split,
 // polygons triangulated with --triangulate), and everything else refused with the reason.
 // On any failure it prints one line on stderr naming the reason (and with --json a JSON error
-// object on stdout), exits non-zero and changes no file: the OBJ and the SVG are written to
-// temporary files and renamed into place together, only when both were written.
+// object on stdout), exits non-zero and changes no file: the mesh and the SVG are written to
+// temporary files and renamed into place together, only when both were written. An output
+// name whose extension names no format written is refused before any work.
 
 #include <ICM/IO/read_seam_selection.h>
 #include <ICM/IO/read_triangle_mesh.h>
@@ -80,7 +82,7 @@ constexpr std::size_t progress_min_faces = 100000;
 struct Arguments
 {
   std::string input, output, svg, seams;
-  bool json = false, keep_overlaps = false, triangulate = false, quiet = false;
+  bool json = false, keep_overlaps = false, triangulate = false, quiet = false, ply_binary = false;
   std::string metric = ICM::Default_metric::name;
   std::string energy = ICM::Curvature_entropy::name;
   std::string boundary = ICM::Free_border().name();
@@ -94,7 +96,8 @@ struct Arguments
 };
 
 const char* const usage =
-  "usage: icm_param INPUT -o OUTPUT.obj [--svg FILE] [--json] [--triangulate] [--quiet]\n"
+  "usage: icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--json] [--triangulate]\n"
+  "         [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
   "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
@@ -291,14 +294,27 @@ std::string parse_atlas(const std::string& atlas_text, const std::string& paddin
   return {};
 }
 
+/// Why -o names no format written (a `.off` would otherwise be OBJ text under a name that
+/// promises OFF), or --ply-binary goes with an output that is not PLY, or empty.
+std::string output_format_conflict(const Arguments& args)
+{
+  const std::string refused = ICM::IO::why_uv_mesh_path_is_refused(args.output);
+  if(!refused.empty())
+    return "-o: " + refused;
+  if(args.ply_binary && ICM::IO::uv_mesh_format(args.output) != ICM::IO::Uv_mesh_format::Ply)
+    return "--ply-binary needs a .ply output, not '" + args.output + "'";
+  return {};
+}
+
 /// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
 /// --help or --version, 2 on a usage error, which `fail` has reported).
 int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report& fail)
 {
   CLI::App app("Conformal parameterization with least area distortion by the inverse curvature map:\n"
-               "reads a mesh (OFF, OBJ, PLY or STL), writes an OBJ with one vt per corner side of\n"
-               "every seam. Output vertices are the input's in file order, without isolated ones,\n"
-               "then one copy per extra fan of each split non-manifold vertex.",
+               "reads a mesh (OFF, OBJ, PLY or STL), writes it with UVs as OBJ (one vt per corner side of\n"
+               "every seam), PLY (per-corner texcoord) or glTF (vertices split at seams). Output vertices\n"
+               "are the input's in file order, without isolated ones, then one copy per extra fan of each\n"
+               "split non-manifold vertex.",
                "icm_param");
   app.set_version_flag("--version", version_text());
   app.allow_extras(); // unknown options are reported below, by name
@@ -307,7 +323,13 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.add_option("input", args.input, "mesh file: .off (and COFF, NOFF, STOFF, 4OFF), .obj, .ply, .stl")
     ->required()
     ->type_name("INPUT");
-  app.add_option("-o,--output", args.output, "the UV'd OBJ to write")->required()->type_name("OUTPUT.obj");
+  app
+    .add_option("-o,--output", args.output,
+                "the UV'd mesh to write, in the format its extension names: .obj (v, vt, f), .ply (ASCII, or "
+                "--ply-binary; per-corner texcoord), .gltf or .glb (glTF 2.0, vertices split at seams)")
+    ->required()
+    ->type_name("OUTPUT.obj|.ply|.gltf|.glb");
+  app.add_flag("--ply-binary", args.ply_binary, "write the .ply output in binary little-endian rather than ASCII");
   app.add_option("--svg", args.svg, "also write an SVG of the layout, faces coloured by log area ratio")
     ->type_name("FILE");
   app.add_flag("--json", args.json, "print the figures as one JSON line on stdout (a JSON error object on failure)");
@@ -391,7 +413,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   }
   catch(const CLI::RequiredError&)
   {
-    return usage_error(args.input.empty() ? "no input file" : "no output file (-o OUTPUT.obj)", fail);
+    return usage_error(args.input.empty() ? "no input file" : "no output file (-o OUTPUT.obj|.ply|.gltf|.glb)", fail);
   }
   catch(const CLI::ParseError& e)
   {
@@ -415,6 +437,12 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     return usage_error(conflict, fail);
   if(const std::string atlas = parse_atlas(atlas_text, padding_text, packer_text, args); !atlas.empty())
     return usage_error(atlas, fail);
+  return {};
+}
+
+  const std::string format = output_format_conflict(args);
+  if(!format.empty())
+    return usage_error(format, fail);
   return -1;
 }
 
@@ -904,7 +932,9 @@ int run(const Arguments& args, const Failure_report& fail)
   svg_options.title = fs::path(args.input).filename().string() + " — ICM" +
                       (optimizes_energy(args) ? " (" + args.energy + ")" : std::string()) +
                       (prescribes_border(args) ? " (" + args.boundary + ")" : std::string());
-  if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options))
+  ICM::IO::Mesh_writing_options mesh_options;
+  mesh_options.binary_ply = args.ply_binary;
+  if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options, mesh_options))
     return fail_after_reading(error);
   seconds.write = since(t);
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);

@@ -24,7 +24,8 @@ configure() {
 echo "== install into $work/prefix"
 cmake --install build --prefix "$work/prefix" >"$work/install.log"
 config_dir=$work/prefix/share/cmake/ICM
-for f in ICMConfig.cmake ICMConfigVersion.cmake ICMTargets.cmake ICMFindCHOLMOD.cmake ICMFindStbRectPack.cmake; do
+for f in ICMConfig.cmake ICMConfigVersion.cmake ICMTargets.cmake ICMFindCHOLMOD.cmake ICMFindStbRectPack.cmake \
+         ICMFindTinyGLTF.cmake; do
   [ -f "$config_dir/$f" ] || fail "$f not installed"
 done
 [ -f "$work/prefix/include/ICM/Inverse_curvature_map_parameterizer_3.h" ] || fail "headers not installed"

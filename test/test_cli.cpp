@@ -5,6 +5,7 @@
 
 #include "atlas_checks.h"
 #include "test_support.h"
+#include "uv_output_readers.h"
 
 #include <algorithm>
 #include <array>
@@ -384,8 +385,8 @@ TEST(Cli, HelpAndVersion)
   Sandbox box;
   const Sandbox::Result help = box.run("--help");
   EXPECT_EQ(help.exit_code, 0) << help.err;
-  for(const char* option : {"--output", "--svg", "--json", "--metric", "--cones", "--cone", "--seams",
-                            "--keep-overlaps", "--triangulate", "--quiet", "--version"})
+  for(const char* option : {"--output", ".ply", ".gltf", ".glb", "--ply-binary", "--svg", "--json", "--metric",
+                            "--cones", "--cone", "--seams", "--keep-overlaps", "--triangulate", "--quiet", "--version"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option << " missing in\n" << help.out;
   const Sandbox::Result version = box.run("--version");
   EXPECT_EQ(version.exit_code, 0) << version.err;
@@ -421,12 +422,13 @@ TEST(Cli, OutputsAreAllOrNothing)
     expect_clean_failure(box, box.run(input + " -o same.obj --svg ./same.obj"), "name the same file");
   }
   {
-    // The input as an output: refused, the input untouched.
+    // The input as an output: refused, the input untouched (an OBJ: -o takes no OFF).
     Sandbox box;
-    fs::copy_file(data_path("nefertiti.off"), box.file("mesh.off"));
-    const std::string before = read_text(box.file("mesh.off"));
-    expect_clean_failure(box, box.run("mesh.off -o mesh.off"), "names the input file", {"mesh.off"});
-    EXPECT_EQ(read_text(box.file("mesh.off")), before);
+    const std::string before = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+    write_text(box.file("mesh.obj"), before);
+    expect_clean_failure(box, box.run("mesh.obj -o mesh.obj"), "names the input file", {"mesh.obj"});
+    expect_clean_failure(box, box.run("mesh.obj -o ./mesh.obj --svg out.svg"), "names the input file", {"mesh.obj"});
+    EXPECT_EQ(read_text(box.file("mesh.obj")), before);
   }
   {
     // A read-only OBJ is refused, not replaced (even for root, who could replace it), and
@@ -448,6 +450,75 @@ TEST(Cli, OutputsAreAllOrNothing)
                          {"a_directory", "out.obj"});
     EXPECT_EQ(read_text(box.file("out.obj")), "previous\n");
   }
+}
+
+TEST(Cli, OutputFormatByExtension)
+{
+  // The same run written as OBJ, PLY (ASCII, binary), glTF and GLB: each file read back has
+  // the OBJ's faces with the same positions and UVs at every corner (as floats).
+  Sandbox box;
+  const std::string input = quote(data_path("nefertiti.off"));
+  const Sandbox::Result obj = box.run(input + " -o out.obj --json");
+  ASSERT_EQ(obj.exit_code, 0) << obj.err;
+  const ICM::IO::Uv_mesh m = icm_test::read_obj_uv_mesh(box.file("out.obj").string());
+  ASSERT_GT(m.number_of_faces(), 0u);
+  EXPECT_EQ(json_value(obj.out, "faces"), std::to_string(m.number_of_faces()));
+  const double tolerance = 1e-6; // of the extent: floats, and no exact repeat promised between runs
+
+  const Sandbox::Result ply = box.run(input + " -o out.ply --svg out.svg --json");
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  EXPECT_EQ(json_value(ply.out, "output"), "\"out.ply\"");
+  icm_test::Corner_mesh corners = icm_test::read_ply_corners(box.file("out.ply").string());
+  EXPECT_EQ(corners.format, "format ascii 1.0");
+  EXPECT_EQ(corners.positions.size(), m.positions.size());
+  icm_test::expect_same_corners(m, corners, tolerance);
+
+  const Sandbox::Result binary = box.run(input + " -o binary.ply --ply-binary");
+  ASSERT_EQ(binary.exit_code, 0) << binary.err;
+  corners = icm_test::read_ply_corners(box.file("binary.ply").string());
+  EXPECT_EQ(corners.format, "format binary_little_endian 1.0");
+  icm_test::expect_same_corners(m, corners, tolerance);
+
+#ifdef ICM_HAS_TINYGLTF
+  for(const bool glb : {false, true})
+  {
+    const std::string name = glb ? "out.glb" : "out.gltf";
+    const Sandbox::Result r = box.run(input + " -o " + name);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    corners = icm_test::read_gltf_corners(box.file(name).string(), glb);
+    // Split at the seams: at least one vertex per position, one UV each.
+    EXPECT_GE(corners.positions.size(), m.positions.size());
+    icm_test::expect_same_corners(m, corners, tolerance);
+  }
+  EXPECT_EQ(box.listing(),
+            (std::vector<std::string>{"binary.ply", "out.glb", "out.gltf", "out.obj", "out.ply", "out.svg"}));
+#endif
+}
+
+TEST(Cli, UnknownOutputExtensionIsRefusedBeforeAnyWork)
+{
+  // Once, -o x.off wrote OBJ text under a name that promises OFF.
+  Sandbox box;
+  const std::string input = quote(data_path("nefertiti.off"));
+  for(const std::string output : {"out.off", "out", "out.stl"})
+  {
+    const Sandbox::Result r = box.run(input + " -o " + output + " --svg out.svg");
+    EXPECT_EQ(r.exit_code, 2) << output;
+    const std::vector<std::string> lines = lines_of(r.err);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines[0].rfind("icm_param: -o: cannot write '" + output + "': ", 0), 0u) << lines[0];
+    EXPECT_NE(lines[0].find("(writes .obj, .ply, .gltf and .glb)"), std::string::npos) << lines[0];
+    EXPECT_NE(r.err.find("usage:"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_TRUE(box.listing().empty()) << output;
+  }
+  Sandbox::Result r = box.run(input + " -o out.off --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("\"error\":\"-o: cannot write 'out.off': unknown extension '.off'"), std::string::npos) << r.out;
+  r = box.run(input + " -o out.obj --ply-binary");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(lines_of(r.err).at(0), "icm_param: --ply-binary needs a .ply output, not 'out.obj'");
+  EXPECT_TRUE(box.listing().empty());
 }
 
 /// The `v` and `vt` lines of an OBJ as numbers.

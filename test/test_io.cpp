@@ -1,9 +1,14 @@
 // Tests of the output side: Uv_mesh extraction from Surface_mesh, Polyhedron_3 and Seam_mesh,
-// the OBJ and SVG writers, and the atomic file replacement they rely on.
+// the OBJ, PLY, glTF and SVG writers, the choice of format by extension, and the atomic file
+// replacement they rely on.
 
+#include <ICM/IO/read_polygon_soup.h>
 #include <ICM/IO/read_seam_selection.h>
 #include <ICM/IO/Uv_mesh.h>
+#include <ICM/IO/write_uv_files.h>
+#include <ICM/IO/write_uv_mesh.h>
 #include <ICM/IO/write_uv_obj.h>
+#include <ICM/IO/write_uv_ply.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/internal/Atomic_file.h>
 
@@ -18,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "uv_output_readers.h"
 
 #include <cmath>
 #include <filesystem>
@@ -605,6 +611,202 @@ TEST(IoObj, InvalidMeshIsRefusedAndExistingFileKept)
 
   EXPECT_EQ(read_text(path), "original\n");
   EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+// ------------------------------------------------------------------------------------------
+// write_uv_ply, write_uv_gltf, write_uv_mesh and write_uv_files: the format by extension
+
+// The cut grid of RoundTripKeepsEveryDigitAndSeams with coordinates that floats round, so
+// that reading back checks the rounding to the nearest float and not only small integers.
+ICM::IO::Uv_mesh seam_uv_mesh()
+{
+  Cut_grid grid({{1, 4}, {4, 7}});
+  auto uv = split_uvs(grid.mesh, grid.sm);
+  ICM::IO::Uv_mesh m = ICM::IO::make_uv_mesh(grid.mesh, boost::make_assoc_property_map(uv));
+  for(auto& p : m.positions)
+    for(double& x : p)
+      x = x / 3 + 1e-9;
+  for(auto& t : m.uvs)
+    for(double& x : t)
+      x = -x / 7 + 0.1;
+  return m;
+}
+
+TEST(IoPly, AsciiAndBinaryReadBackWithTheSameCorners)
+{
+  const ICM::IO::Uv_mesh m = seam_uv_mesh();
+  ASSERT_GT(m.uvs.size(), m.positions.size()); // the seam splits UVs
+  Temp_dir dir("icm_test_io");
+  for(const bool binary : {false, true})
+  {
+    const std::string path = dir.file(binary ? "grid_binary.ply" : "grid_ascii.ply");
+    ICM::IO::Mesh_writing_options options;
+    options.binary_ply = binary;
+    std::string error;
+    ASSERT_TRUE(ICM::IO::write_uv_mesh(path, m, error, options)) << error;
+
+    const icm_test::Corner_mesh ply = icm_test::read_ply_corners(path);
+    EXPECT_EQ(ply.format, binary ? "format binary_little_endian 1.0" : "format ascii 1.0");
+    // Vertices are the positions, shared across the seam: the faces index them as m does.
+    ASSERT_EQ(ply.positions.size(), m.positions.size());
+    EXPECT_EQ(ply.faces, m.face_positions);
+    icm_test::expect_same_corners(m, ply);
+
+    // ICM's own PLY reader (the input side) takes it too: same points, same faces.
+    ICM::IO::Polygon_soup soup;
+    ASSERT_TRUE(ICM::IO::read_polygon_soup(path, soup, error)) << error;
+    ASSERT_EQ(soup.points.size(), m.positions.size());
+    ASSERT_EQ(soup.polygons.size(), m.number_of_faces());
+    for(std::size_t i = 0; i < soup.points.size(); ++i)
+      for(int c = 0; c < 3; ++c)
+        EXPECT_EQ(static_cast<float>(soup.points[i][c]), static_cast<float>(m.positions[i][c]));
+    for(std::size_t f = 0; f < soup.polygons.size(); ++f)
+      for(int k = 0; k < 3; ++k)
+        EXPECT_EQ(soup.polygons[f].at(k), static_cast<std::size_t>(m.face_positions[f][k]));
+  }
+  EXPECT_EQ(dir.number_of_entries(), 2u); // no temporary left
+}
+
+TEST(IoPly, HeaderNamesTheTexcoordListAsMeshLabWritesIt)
+{
+  const ICM::IO::Uv_mesh m = separate_triangles(2);
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  ASSERT_TRUE(ICM::IO::write_uv_ply(s, m));
+  EXPECT_EQ(s.str(), "ply\nformat ascii 1.0\ncomment written by ICM\nelement vertex 6\nproperty float x\n"
+                     "property float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                     "property list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n3 0 0\n2 1 0\n"
+                     "3 0 1 2 6 0 0 1 0 0 1\n3 3 4 5 6 2 0 3 0 2 1\n");
+  std::ostringstream b;
+  ASSERT_TRUE(ICM::IO::write_uv_ply(b, m, true));
+  const std::string header_end = "end_header\n";
+  const std::size_t body = b.str().find(header_end) + header_end.size();
+  // 6 vertices of 3 floats, 2 faces of a count, 3 ints, a count and 6 floats.
+  EXPECT_EQ(b.str().size() - body, 6u * 12 + 2u * (1 + 12 + 1 + 24));
+}
+
+#ifdef ICM_HAS_TINYGLTF
+TEST(IoGltf, GltfAndGlbReadBackByTinygltfWithTheSameCorners)
+{
+  const ICM::IO::Uv_mesh m = seam_uv_mesh();
+  Temp_dir dir("icm_test_io");
+  for(const bool binary : {false, true})
+  {
+    const std::string path = dir.file(binary ? "grid.glb" : "grid.gltf");
+    std::string error;
+    ASSERT_TRUE(ICM::IO::write_uv_mesh(path, m, error)) << error;
+    const std::string text = read_text(path);
+    EXPECT_EQ(text.rfind(binary ? "glTF" : "{", 0), 0u) << "not a " << (binary ? "GLB" : "glTF JSON") << " file";
+
+    const icm_test::Corner_mesh gltf = icm_test::read_gltf_corners(path, binary);
+    icm_test::expect_same_corners(m, gltf);
+    // One glTF vertex per (position, UV) pair: each seam vertex once per side, so here
+    // (every UV belongs to one position) exactly one per UV.
+    EXPECT_EQ(gltf.positions.size(), m.uvs.size());
+    std::set<std::array<int, 2>> pairs;
+    for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+      for(int k = 0; k < 3; ++k)
+        pairs.insert({{m.face_positions[f][k], m.face_uvs[f][k]}});
+    EXPECT_EQ(gltf.positions.size(), pairs.size());
+  }
+  EXPECT_EQ(dir.number_of_entries(), 2u);
+}
+
+TEST(IoGltf, MeshWithoutFacesIsRefused)
+{
+  Temp_dir dir("icm_test_io");
+  ICM::IO::Uv_mesh empty;
+  empty.positions.push_back({{0., 0., 0.}});
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_mesh(dir.file("empty.glb"), empty, error));
+  EXPECT_NE(error.find("no faces"), std::string::npos) << error;
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+}
+#else
+TEST(IoGltf, RefusedWithoutTinygltf)
+{
+  Temp_dir dir("icm_test_io");
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_mesh(dir.file("grid.gltf"), grid_uv_mesh(), error));
+  EXPECT_NE(error.find("needs tinygltf"), std::string::npos) << error;
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+}
+#endif
+
+TEST(IoUvMeshFormat, ByExtensionInAnyCase)
+{
+  using ICM::IO::Uv_mesh_format;
+  EXPECT_EQ(ICM::IO::uv_mesh_format("a/b.obj"), Uv_mesh_format::Obj);
+  EXPECT_EQ(ICM::IO::uv_mesh_format("b.PLY"), Uv_mesh_format::Ply);
+  EXPECT_EQ(ICM::IO::uv_mesh_format("c.d.gltf"), Uv_mesh_format::Gltf);
+  EXPECT_EQ(ICM::IO::uv_mesh_format("e.Glb"), Uv_mesh_format::Glb);
+  EXPECT_FALSE(ICM::IO::uv_mesh_format("f.off"));
+  EXPECT_FALSE(ICM::IO::uv_mesh_format("obj"));
+  EXPECT_EQ(ICM::IO::why_uv_mesh_path_is_refused("x.obj"), "");
+  EXPECT_EQ(ICM::IO::why_uv_mesh_path_is_refused("x.off"),
+            "cannot write 'x.off': unknown extension '.off' (writes .obj, .ply, .gltf and .glb)");
+  EXPECT_EQ(ICM::IO::why_uv_mesh_path_is_refused("dir.d/x"),
+            "cannot write 'dir.d/x': no extension (writes .obj, .ply, .gltf and .glb)");
+}
+
+TEST(IoUvMeshFormat, UnknownExtensionWritesNothingAndKeepsTheFile)
+{
+  Temp_dir dir("icm_test_io");
+  const std::string off = dir.file("mesh.off");
+  write_text(off, "previous\n");
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_mesh(off, grid_uv_mesh(), error));
+  EXPECT_NE(error.find("unknown extension '.off'"), std::string::npos) << error;
+  // Not even the SVG of a pair: the refusal comes before anything is written.
+  EXPECT_FALSE(ICM::IO::write_uv_files(off, dir.file("layout.svg"), grid_uv_mesh(), error));
+  EXPECT_NE(error.find("unknown extension '.off'"), std::string::npos) << error;
+  EXPECT_EQ(read_text(off), "previous\n");
+  EXPECT_EQ(dir.number_of_entries(), 1u);
+}
+
+TEST(IoUvMeshFormat, CoordinatesBeyondAFloatAreRefusedForPlyAndGltf)
+{
+  Temp_dir dir("icm_test_io");
+  ICM::IO::Uv_mesh big = grid_uv_mesh();
+  big.positions[4][2] = 1e39;
+  std::string error;
+  EXPECT_FALSE(ICM::IO::write_uv_mesh(dir.file("big.ply"), big, error));
+  EXPECT_NE(error.find("position 4 has a coordinate (1e+39) beyond the range of the 32-bit floats PLY stores"),
+            std::string::npos)
+    << error;
+  EXPECT_FALSE(ICM::IO::write_uv_ply(dir.file("big.ply"), big, error));
+  EXPECT_NE(error.find("beyond the range"), std::string::npos) << error;
+  big = grid_uv_mesh();
+  big.uvs[2][0] = -1e300;
+#ifdef ICM_HAS_TINYGLTF
+  EXPECT_FALSE(ICM::IO::write_uv_mesh(dir.file("big.glb"), big, error));
+  EXPECT_NE(error.find("UV 2 has a coordinate (-1e+300) beyond the range of the 32-bit floats glTF stores"),
+            std::string::npos)
+    << error;
+#endif
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+  // OBJ keeps doubles: the same mesh is written.
+  EXPECT_TRUE(ICM::IO::write_uv_mesh(dir.file("big.obj"), big, error)) << error;
+}
+
+TEST(IoUvFiles, MeshOfAnyFormatAndSvgAllOrNothing)
+{
+  const ICM::IO::Uv_mesh m = seam_uv_mesh();
+  Temp_dir dir("icm_test_io");
+  const std::string ply = dir.file("pair.ply"), svg = dir.file("pair.svg");
+  ICM::IO::Mesh_writing_options binary;
+  binary.binary_ply = true;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_files(ply, svg, m, error, ICM::IO::Svg_options(), binary)) << error;
+  icm_test::expect_same_corners(m, icm_test::read_ply_corners(ply));
+  EXPECT_NE(read_text(svg).find("<svg"), std::string::npos);
+
+  // A failing SVG: the new mesh is not written either.
+  const std::string glb = dir.file("new.glb");
+  EXPECT_FALSE(ICM::IO::write_uv_files(glb, (dir.path() / "nope" / "x.svg").string(), m, error));
+  EXPECT_NE(error.find("x.svg"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(glb));
+  EXPECT_EQ(dir.number_of_entries(), 2u);
 }
 
 // ------------------------------------------------------------------------------------------
