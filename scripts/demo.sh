@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # The main job: parameterize a bundled mesh, write the UV'd OBJ and an SVG of the layout.
+# Builds only the command-line tool (the tests are scripts/test.sh), so the first picture
+# comes after one target's build, not the whole project's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
+bash scripts/install_deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$(nproc)" --target icm_param
 mkdir -p out
 mesh=${1:-examples/data/three_peaks.off}
 name=$(basename "${mesh%.*}")
