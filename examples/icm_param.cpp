@@ -437,9 +437,6 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     return usage_error(conflict, fail);
   if(const std::string atlas = parse_atlas(atlas_text, padding_text, packer_text, args); !atlas.empty())
     return usage_error(atlas, fail);
-  return {};
-}
-
   const std::string format = output_format_conflict(args);
   if(!format.empty())
     return usage_error(format, fail);
