@@ -58,8 +58,10 @@ namespace ICM {
 ///         the UV of the corner at `target(h)` in `face(h)` (border halfedges get the UV of
 ///         the corner across `next(h)`). It serves directly as the UV map of a
 ///         `CGAL::Seam_mesh` whose seams are `seam_edges`.
-/// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is `Default_metric`
-/// \tparam Energy a model of `Energy` (Energies.h, doc/energies.md); `CGAL::Default` is
+/// \tparam Metric a model of \ref ::Metric "Metric"; `CGAL::Default` is `Default_metric`
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"; `CGAL::Default` is
+///         `Default_sparse_solver`
+/// \tparam Energy a model of \ref ::Energy "Energy" (doc/energies.md); `CGAL::Default` is
 ///         `Curvature_entropy`. Another energy is minimised over the conformal maps with the
 ///         singular set the entropy's run chose (the border and the cones; a user cone's
 ///         fixed angle stays fixed), from the entropy optimum, by
@@ -197,6 +199,8 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
 /// `options.automatic_cones` and `options.remove_overlaps` do not apply (a cone off the seams,
 /// or a cut of the overlap removal, would need seams the seam mesh does not have).
 ///
+/// \tparam Metric, SparseSolver, Energy as the overload above: models of \ref ::Metric "Metric",
+///         \ref ::SparseSolver "SparseSolver" and \ref ::Energy "Energy"
 /// \tparam VertexUVMap a writable property map from the seam mesh's `vertex_descriptor` (one
 ///         per side of a seam) to a 2D point, as CGAL's `parameterize()` takes
 /// \returns as the overload above
