@@ -51,6 +51,8 @@ namespace ICM {
 /// nested circles without a cut (doc/border_conditions.md). All UVs are written
 /// and every vertex is marked parameterized.
 ///
+/// \image html three_peaks_icm_lscm_arap.svg "three_peaks (examples/data): the free-boundary layout of this parameterizer (icm_free_boundary) beside CGAL's LSCM and ARAP, faces coloured by log(UV area / 3D area)" width=100%
+///
 /// When the optimum cannot be reached in the class of `Metric` (vertex scaling or inversive
 /// distance: a face would stop being a triangle), the parameterizer falls back to the circle
 /// packing metric, whose every u is valid, and says so in `report().metric` (see

@@ -53,6 +53,8 @@ namespace ICM {
 /// cones), and the charts are packed side by side at their 3D scale (with `options.atlas`,
 /// into [0, 1]^2 at one scale, padded apart in texels).
 ///
+/// \image html cones.svg "Area distortion (area-weighted mean log² area) and charts against the number of cones, per mesh; solid: the entropy's cone angles, dashed: U_square's (doc/benchmarks.md, Cones)" width=100%
+///
 /// \tparam TriangleMesh a model of `FaceGraph`
 /// \tparam HalfedgeUVMap a writable property map from `halfedge_descriptor` to a 2D point:
 ///         the UV of the corner at `target(h)` in `face(h)` (border halfedges get the UV of
