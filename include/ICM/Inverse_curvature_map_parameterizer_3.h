@@ -51,6 +51,8 @@ namespace ICM {
 /// nested circles without a cut (doc/border_conditions.md). All UVs are written
 /// and every vertex is marked parameterized.
 ///
+/// \image html three_peaks_icm_lscm_arap.svg "three_peaks (examples/data): the free-boundary layout of this parameterizer (icm_free_boundary) beside CGAL's LSCM and ARAP, faces coloured by log(UV area / 3D area)" width=100%
+///
 /// When the optimum cannot be reached in the class of `Metric` (vertex scaling or inversive
 /// distance: a face would stop being a triangle), the parameterizer falls back to the circle
 /// packing metric, whose every u is valid, and says so in `report().metric` (see
@@ -59,18 +61,22 @@ namespace ICM {
 /// CGAL's `parameterize()` takes the parameterizer by value; copies share one report, so
 /// `report()` on the object passed in describes the last run.
 ///
+/// \cgalModels{CGAL's <a href="https://doc.cgal.org/latest/Surface_mesh_parameterization/classParameterizer__3.html">Parameterizer_3</a>}
+///
 /// \tparam TriangleMesh a model of `FaceGraph`
-/// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is
+/// \tparam Metric a model of \ref ::Metric "Metric"; `CGAL::Default` is
 ///         `Default_metric` (`Intrinsic_delaunay_metric`, chosen by measurement: doc/benchmarks.md)
-/// \tparam SparseSolver an Eigen sparse Cholesky; `CGAL::Default` is `Default_sparse_solver`:
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver" (an Eigen sparse
+///         Cholesky); `CGAL::Default` is `Default_sparse_solver`:
 ///         Eigen's `SimplicialLDLT`, switching to CHOLMOD after nested dissection for large
 ///         meshes when SuiteSparse is present (`Size_adaptive_solver`).
-/// \tparam Energy_ a model of `Energy` (doc/energies.md); `CGAL::Default` is
+/// \tparam Energy_ a model of \ref ::Energy "Energy" (doc/energies.md); `CGAL::Default` is
 ///         `Curvature_entropy`, whose minimum is reached directly as the Dirichlet problem
 ///         u_S = u0_S (the free-boundary optimum). Any other energy is minimised over the
 ///         free-boundary admissible metrics by `minimize_energy_on_singular_values`, started
 ///         from that optimum (options: `Parameterization_options::energy`).
-/// \tparam BorderCondition `Free_border`, `Prescribed_border_curvature`, `Border_shape` or
+/// \tparam BorderCondition a model of \ref ::BorderCondition "BorderCondition":
+///         `Free_border`, `Prescribed_border_curvature`, `Border_shape` or
 ///         `Circle_domain` (Border_conditions.h, doc/border_conditions.md); `CGAL::Default` is
 ///         `Free_border`. Any other condition prescribes the border, which leaves the energy
 ///         nothing to choose: it then needs the default `Energy`. `Circle_domain` also takes

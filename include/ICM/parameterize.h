@@ -53,13 +53,17 @@ namespace ICM {
 /// cones), and the charts are packed side by side at their 3D scale (with `options.atlas`,
 /// into [0, 1]^2 at one scale, padded apart in texels).
 ///
+/// \image html cones.svg "Area distortion (area-weighted mean log² area) and charts against the number of cones, per mesh; solid: the entropy's cone angles, dashed: U_square's (doc/benchmarks.md, Cones)" width=100%
+///
 /// \tparam TriangleMesh a model of `FaceGraph`
 /// \tparam HalfedgeUVMap a writable property map from `halfedge_descriptor` to a 2D point:
 ///         the UV of the corner at `target(h)` in `face(h)` (border halfedges get the UV of
 ///         the corner across `next(h)`). It serves directly as the UV map of a
 ///         `CGAL::Seam_mesh` whose seams are `seam_edges`.
-/// \tparam Metric a model of `Metric` (doc/concepts.md); `CGAL::Default` is `Default_metric`
-/// \tparam Energy a model of `Energy` (Energies.h, doc/energies.md); `CGAL::Default` is
+/// \tparam Metric a model of \ref ::Metric "Metric"; `CGAL::Default` is `Default_metric`
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"; `CGAL::Default` is
+///         `Default_sparse_solver`
+/// \tparam Energy a model of \ref ::Energy "Energy" (doc/energies.md); `CGAL::Default` is
 ///         `Curvature_entropy`. Another energy is minimised over the conformal maps with the
 ///         singular set the entropy's run chose (the border and the cones; a user cone's
 ///         fixed angle stays fixed), from the entropy optimum, by
@@ -197,6 +201,8 @@ parameterize(const TriangleMesh& mesh, HalfedgeUVMap uv_map,
 /// `options.automatic_cones` and `options.remove_overlaps` do not apply (a cone off the seams,
 /// or a cut of the overlap removal, would need seams the seam mesh does not have).
 ///
+/// \tparam Metric, SparseSolver, Energy as the overload above: models of \ref ::Metric "Metric",
+///         \ref ::SparseSolver "SparseSolver" and \ref ::Energy "Energy"
 /// \tparam VertexUVMap a writable property map from the seam mesh's `vertex_descriptor` (one
 ///         per side of a seam) to a 2D point, as CGAL's `parameterize()` takes
 /// \returns as the overload above

@@ -31,6 +31,8 @@ namespace ICM {
 
 /// \brief The free boundary (default): every border vertex singular, the border curvature
 /// the optimum of the curvature entropy (paper Thm 3.5), or of the parameterizer's `Energy`.
+///
+/// \cgalModels{\ref BorderCondition (the default)}
 struct Free_border
 {
   std::string name() const { return "free"; }
@@ -56,6 +58,8 @@ struct Free_border
 ///
 /// \tparam VertexCurvatureMap a model of `ReadablePropertyMap`, key the mesh's
 ///         `vertex_descriptor`, value convertible to `double`
+///
+/// \cgalModels{\ref BorderCondition}
 template <class VertexCurvatureMap>
 class Prescribed_border_curvature
 {
@@ -130,6 +134,8 @@ inline Border_target refuse_faces_inside_a_hole(const Mesh_index& index, Border_
 /// the metric is the fixed point of u <- K^{-1}(T(u)), Anderson-accelerated.
 /// The outer loop is the longest in 3D (`Outer_loop::Longest`, default), or the loop of the
 /// border halfedge given to `parameterize()` (`Outer_loop::Of_border_halfedge`).
+///
+/// \cgalModels{\ref BorderCondition}
 class Circle_domain
 {
 public:

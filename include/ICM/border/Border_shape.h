@@ -82,6 +82,8 @@ struct Border_parameterizer_shape<BorderParameterizer, std::void_t<typename Bord
 ///
 /// \tparam BorderParameterizer a CGAL border parameterizer, e.g.
 ///         `CGAL::Surface_mesh_parameterization::Square_border_arc_length_parameterizer_3<TriangleMesh>`
+///
+/// \cgalModels{\ref BorderCondition}
 template <class BorderParameterizer>
 class Border_shape
 {
@@ -175,10 +177,14 @@ private:
 };
 
 /// `Border_shape` with CGAL's arc-length square border: a rectangle.
+///
+/// \cgalModels{\ref BorderCondition}
 template <class TriangleMesh>
 using Square_border =
   Border_shape<CGAL::Surface_mesh_parameterization::Square_border_arc_length_parameterizer_3<TriangleMesh>>;
 /// `Border_shape` with CGAL's arc-length circular border: the disk.
+///
+/// \cgalModels{\ref BorderCondition}
 template <class TriangleMesh>
 using Circular_border =
   Border_shape<CGAL::Surface_mesh_parameterization::Circular_border_arc_length_parameterizer_3<TriangleMesh>>;

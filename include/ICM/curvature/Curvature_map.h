@@ -45,6 +45,8 @@ struct Has_intrinsic_triangulation<
 /// Evaluates K(u) and the dynamic Laplacian weights for a metric. Holds its own copy of the
 /// metric (whose triangulation may change with u) and per-edge length storage, so repeated
 /// evaluations allocate nothing.
+///
+/// \tparam Metric a model of \ref ::Metric "Metric"
 template <class Metric = Circle_packing_metric>
 class Curvature_map
 {

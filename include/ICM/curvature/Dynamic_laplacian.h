@@ -47,6 +47,8 @@ using Sparse_matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 /// The analysis reads the matrix in place: Eigen 3.4 recognises "no ordering" only as
 /// `NaturalOrdering<Eigen::Index>`, which does not compile with int indices, and otherwise
 /// copies the matrix twice per analysis (together about as long as a factorization).
+///
+/// \cgalModels{\ref SparseSolver}
 class Simplicial_solver : public Eigen::SimplicialLDLT<Sparse_matrix, Eigen::Upper, Eigen::NaturalOrdering<int>>
 {
 public:
@@ -62,10 +64,14 @@ public:
 
 #ifdef ICM_HAS_CHOLMOD
 /// CHOLMOD's supernodal LL^T with its default ordering (SuiteSparse).
+///
+/// \cgalModels{\ref SparseSolver}
 using Cholmod_solver = Eigen::CholmodSupernodalLLT<Sparse_matrix, Eigen::Upper>;
 
 /// CHOLMOD's simplicial LDL^T after a nested dissection ordering of its own (NESDIS),
 /// computed at every analysis.
+///
+/// \cgalModels{\ref SparseSolver}
 class Nested_dissection_solver : public Eigen::CholmodDecomposition<Sparse_matrix, Eigen::Upper>
 {
 public:
@@ -87,6 +93,8 @@ public:
 /// weight (a metric that is not Delaunay) may be indefinite, which CHOLMOD refuses in LL^T and
 /// in LDL^T alike: Eigen's LDL^T (`Simplicial_solver`, in the same order) then takes over
 /// until the next analysis.
+///
+/// \cgalModels{\ref SparseSolver}
 class Preordered_cholmod_solver
 {
 public:
@@ -138,6 +146,8 @@ private:
 /// The default when SuiteSparse is present: Eigen's `Simplicial_solver` below
 /// `nested_dissection_min_vertices` unknowns, `Preordered_cholmod_solver` from there on,
 /// where `Dynamic_laplacian` numbers the unknowns by nested dissection.
+///
+/// \cgalModels{\ref SparseSolver (the default with CHOLMOD)}
 class Size_adaptive_solver
 {
 public:
@@ -175,8 +185,12 @@ private:
   Simplicial_solver simplicial_;
   Preordered_cholmod_solver large_solver_;
 };
+/// The \ref SparseSolver that `CGAL::Default` picks: `Size_adaptive_solver` with CHOLMOD,
+/// `Simplicial_solver` without.
 using Default_sparse_solver = Size_adaptive_solver;
 #else
+/// The \ref SparseSolver that `CGAL::Default` picks: `Size_adaptive_solver` with CHOLMOD,
+/// `Simplicial_solver` without.
 using Default_sparse_solver = Simplicial_solver;
 #endif
 
@@ -192,6 +206,8 @@ struct Reports_fill<Solver, std::void_t<decltype(std::declval<const Solver&>().f
 /// Delta_ij = -w_ij between free neighbours. Two edges between the same vertices (possible
 /// in an intrinsic triangulation) share one entry. `SparseSolver` is an Eigen sparse Cholesky
 /// (analyzePattern / factorize / solve / info).
+///
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"
 template <class SparseSolver = Default_sparse_solver>
 class Dynamic_laplacian
 {

@@ -60,6 +60,9 @@ inline std::vector<char> free_vertices_off(const std::vector<char>& is_singular)
 
 /// Newton's method for K(u)_F = k_F with u fixed off F. The Laplacian pattern is analysed
 /// once at construction and every step only refactorizes numerically.
+///
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"
+/// \tparam Metric a model of \ref ::Metric "Metric"
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
 class Inverse_curvature_map
 {
@@ -309,6 +312,9 @@ private:
 /// Algorithm 1: the metric of the conformal class whose curvature is `k_target` everywhere.
 /// `k_target` must satisfy Gauss-Bonnet (sum = 2 pi chi). `u` starts at `metric.u0` when
 /// empty; on return it is normalised so that sum(u - u0) = 0.
+///
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"
+/// \tparam Metric a model of \ref ::Metric "Metric"
 template <class SparseSolver = Default_sparse_solver, class Metric = Circle_packing_metric>
 Newton_report inverse_curvature_map(const internal::Mesh_index& index, const Metric& metric,
                                     const Eigen::VectorXd& k_target, Eigen::VectorXd& u,

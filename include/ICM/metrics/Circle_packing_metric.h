@@ -27,6 +27,12 @@ namespace ICM {
 /// The conformal class of a circle packing: one intersection angle per edge
 /// (`inversive_distance` = cos phi, in [0, 1]), and the log radii `u0` of the initial
 /// packing, against which every energy is measured.
+///
+/// `u0`, `length()` and `face_geometry()` are those of the two metrics with circles at the
+/// vertices (their common base, in namespace `internal`): l_ij² = γ_i² + γ_j² + 2 I_ij γ_i γ_j
+/// with γ = exp(u), and the Jacobian weights are the power-centre distances h/l.
+///
+/// \cgalModels{\ref Metric}
 class Circle_packing_metric : public internal::Circle_metric
 {
 public:

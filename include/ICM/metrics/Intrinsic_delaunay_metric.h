@@ -185,6 +185,17 @@ inline double ptolemy_flipped_length(const Diamond_sides& s, int e, const std::v
 
 } // namespace internal
 
+/// \brief Vertex scaling on an intrinsic Delaunay triangulation (the default metric): the
+/// mesh's own conformal class, flipped to be Delaunay for the scaled lengths at every u
+/// (Ptolemy flips), so that every u away from the border has a metric.
+///
+/// At u0 = 0 the metric is the mesh (made intrinsic Delaunay by Euclidean flips). The
+/// metric owns its triangulation (`triangulation()`): the mesh's vertices and border, its
+/// interior edges flipped; a flipped edge keeps its id. Border edges never flip, nor do the
+/// edges the constructor fixes (the seams). The Jacobian is the cotangent Laplacian of the
+/// current triangulation.
+///
+/// \cgalModels{\ref Metric (one that owns its triangulation)}
 class Intrinsic_delaunay_metric
 {
 public:

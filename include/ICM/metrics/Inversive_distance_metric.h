@@ -23,6 +23,12 @@ namespace ICM {
 /// radius of each vertex: the circles of every edge are then disjoint or tangent (I >= 1),
 /// the regime of Guo's and Luo's rigidity theorems, and small circles keep the metric close
 /// to vertex scaling, its limit as the radii shrink.
+///
+/// `u0`, `length()` and `face_geometry()` are those of the two metrics with circles at the
+/// vertices (their common base, in namespace `internal`): l_ij² = γ_i² + γ_j² + 2 I_ij γ_i γ_j
+/// with γ = exp(u), and the Jacobian weights are the power-centre distances h/l.
+///
+/// \cgalModels{\ref Metric}
 class Inversive_distance_metric : public internal::Circle_metric
 {
 public:

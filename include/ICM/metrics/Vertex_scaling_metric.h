@@ -51,6 +51,15 @@ inline Face_geometry vertex_scaling_face_geometry(const std::array<double, 3>& l
 
 } // namespace internal
 
+/// \brief The vertex scaling metric (Luo 2004; Springborn, Schroeder, Pinkall 2008):
+/// l_ij = exp((u_i + u_j) / 2) l0_ij on the mesh's own edges, with l0 the mesh's lengths.
+///
+/// At u0 = 0 the metric is the mesh, so optimising in this class optimises in the mesh's own
+/// conformal structure; the Jacobian is the cotangent Laplacian. Not every u gives
+/// triangles: Newton's line search keeps every face valid, and where the optimum lies outside
+/// the valid region the parameterizer falls back to `Circle_packing_metric`.
+///
+/// \cgalModels{\ref Metric}
 class Vertex_scaling_metric
 {
 public:

@@ -347,6 +347,10 @@ private:
 /// optimum (`free_boundary_optimum`) is natural: every energy is measured against it.
 /// `target` is the curvature the free vertices keep (per vertex; empty: zero, flat), nonzero
 /// at cones whose angle the user fixed.
+///
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"
+/// \tparam Metric a model of \ref ::Metric "Metric"
+/// \tparam Energy a model of \ref ::Energy "Energy"
 template <class SparseSolver, class Metric, class Energy>
 Curvature_space_report minimize_energy_on_singular_values(
   Inverse_curvature_map<SparseSolver, Metric>& dirichlet, const internal::Mesh_index& index, const Metric& metric,

@@ -163,6 +163,8 @@ Eigen::VectorXd energy_gradient(const Energy& energy, const Energy_state<Metric>
 /// grad_k E = u - u0; its minimum over the admissible space is the free-boundary optimum
 /// u_S - u0_S = const (Thm 3.5), which `free_boundary_optimum` reaches directly. No value
 /// (see the file comment); grad_u E = Delta(u) (u - u0).
+///
+/// \cgalModels{\ref Energy (the default)}
 struct Curvature_entropy
 {
   static constexpr const char* name = "entropy";
@@ -192,6 +194,8 @@ struct Curvature_entropy
 /// The u-square energy (eq. 7), the spread of the log scale factors: the mean over vertices
 /// of (u - u0 - mean(u - u0))^2. The paper takes the mean of u - u0 as zero; measuring
 /// about the mean makes the energy independent of the global scale.
+///
+/// \cgalModels{\ref Energy}
 struct U_square
 {
   static constexpr const char* name = "u-square";
@@ -225,6 +229,8 @@ private:
 /// Area distortion (eq. 6): the mean over faces of (s_f / A_f - 1)^2, s_f the face's area
 /// under the metric normalised to the mesh's total, A_f its 3D area. As the paper notes it
 /// may have local minima.
+///
+/// \cgalModels{\ref Energy}
 struct Area_distortion
 {
   static constexpr const char* name = "area";
@@ -279,6 +285,8 @@ std::array<std::array<double, 3>, 3> angle_jacobian(const Energy_state<Metric>& 
 
 /// The ABF energy of Sec. III-D against the mesh's own angles: the mean over corners of
 /// (theta - theta_mesh)^2 (radians^2, the `angle_distortion` of doc/distortion.md).
+///
+/// \cgalModels{\ref Energy}
 struct Angle_distortion
 {
   static constexpr const char* name = "angle";
@@ -340,6 +348,8 @@ enum class Face_weighting
 /// conformal change can unflip. With the second order Taylor polynomial four such faces of
 /// the cow (32 cones) made E 110 at the entropy optimum (3.4 with the tangent), and the
 /// optimum's mean log^2 area was 22.7 against the entropy's 5.7 (with the tangent: 3.2).
+///
+/// \cgalModels{\ref Energy}
 class Log_area_distortion
 {
 public:

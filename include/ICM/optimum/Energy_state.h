@@ -142,6 +142,8 @@ inline Uv rotated(const Uv& d, double angle)
 ///
 /// Built once per mesh; `update` measures the metric at a new u. The mesh index must outlive
 /// the state.
+///
+/// \tparam Metric a model of \ref ::Metric "Metric"
 template <class Metric>
 class Energy_state
 {

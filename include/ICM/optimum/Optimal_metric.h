@@ -33,6 +33,9 @@ inline std::vector<char> boundary_singular_set(const internal::Mesh_index& index
 /// Minimum of the curvature entropy for the singular set S, by Newton on the Dirichlet
 /// problem u_S = u0_S, K(u)_N = 0. `solver` must have been built with F = not S; it keeps
 /// its factorization pattern for later use (the harmonic layout reuses it).
+///
+/// \tparam SparseSolver a model of \ref ::SparseSolver "SparseSolver"
+/// \tparam Metric a model of \ref ::Metric "Metric"
 template <class SparseSolver, class Metric>
 Newton_report free_boundary_optimum(Inverse_curvature_map<SparseSolver, Metric>& solver, const Metric& metric,
                                     Eigen::VectorXd& u, const Newton_options& options = Newton_options())
