@@ -1,9 +1,11 @@
 // icm_param: parameterize any triangle mesh file with the inverse curvature map (cones and
 // seams where its topology needs them, one chart per connected component) and write the UV'd
 // mesh (OBJ with a vt per corner side of every seam, PLY with per-corner texcoords, or glTF
-// split at the seams, by the extension of -o), optionally an SVG of the layout and a JSON line.
+// split at the seams, by the extension of -o), optionally pictures (the layout as SVG or PNG,
+// the surface with a checkerboard as PNG) and a JSON line.
 //
-//   icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--json] [--triangulate] [--quiet]
+//   icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--png FILE] [--preview FILE]
+//             [--picture-size PIXELS] [--json] [--triangulate] [--quiet]
 //             [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]
 //             [--energy entropy|u-square|area|angle|log-area]
 //             [--cones auto|N] [--cone VERTEX:DEGREES]... [--seams FILE.selection.txt]
@@ -18,8 +20,8 @@
 // repaired only as users expect (isolated vertices dropped, non-manifold vertices split,
 // polygons triangulated with --triangulate), and everything else refused with the reason.
 // On any failure it prints one line on stderr naming the reason (and with --json a JSON error
-// object on stdout), exits non-zero and changes no file: the mesh and the SVG are written to
-// temporary files and renamed into place together, only when both were written. An output
+// object on stdout), exits non-zero and changes no file: the mesh and the pictures are written to
+// temporary files and renamed into place together, only when all were written. An output
 // name whose extension names no format written is refused before any work.
 
 #include <ICM/IO/read_seam_selection.h>
@@ -81,7 +83,8 @@ constexpr std::size_t progress_min_faces = 100000;
 
 struct Arguments
 {
-  std::string input, output, svg, seams;
+  std::string input, output, svg, png, preview, seams;
+  int picture_size = 1024; // --picture-size: the PNG pictures' side
   bool json = false, keep_overlaps = false, triangulate = false, quiet = false, ply_binary = false;
   std::string metric = ICM::Default_metric::name;
   std::string energy = ICM::Curvature_entropy::name;
@@ -96,8 +99,8 @@ struct Arguments
 };
 
 const char* const usage =
-  "usage: icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--json] [--triangulate]\n"
-  "         [--quiet]\n"
+  "usage: icm_param INPUT -o OUTPUT.obj|.ply|.gltf|.glb [--ply-binary] [--svg FILE] [--png FILE]\n"
+  "         [--preview FILE] [--picture-size PIXELS] [--json] [--triangulate] [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
   "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
@@ -303,6 +306,20 @@ std::string output_format_conflict(const Arguments& args)
     return "-o: " + refused;
   if(args.ply_binary && ICM::IO::uv_mesh_format(args.output) != ICM::IO::Uv_mesh_format::Ply)
     return "--ply-binary needs a .ply output, not '" + args.output + "'";
+  for(const auto& [option, path] :
+      {std::pair<std::string, std::string>{"--png", args.png}, {"--preview", args.preview}})
+  {
+    if(path.empty())
+      continue;
+#ifndef ICM_HAS_STB_IMAGE_WRITE
+    return option + " needs stb_image_write (Debian: libstb-dev), which icm_param was built without";
+#endif
+    std::string extension = fs::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if(extension != ".png")
+      return option + " writes PNG: name a .png file, not '" + path + "'";
+  }
   return {};
 }
 
@@ -332,6 +349,18 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.add_flag("--ply-binary", args.ply_binary, "write the .ply output in binary little-endian rather than ASCII");
   app.add_option("--svg", args.svg, "also write an SVG of the layout, faces coloured by log area ratio")
     ->type_name("FILE");
+  app
+    .add_option("--png", args.png,
+                "also write a PNG of the layout: faces coloured by log area ratio, chart borders, "
+                "flipped faces in black and green, a colour bar")
+    ->type_name("FILE");
+  app
+    .add_option("--preview", args.preview,
+                "also write a PNG of the surface textured with a checkerboard through the UVs, from a fixed camera")
+    ->type_name("FILE");
+  app.add_option("--picture-size", args.picture_size, "side of the PNG pictures in pixels (default 1024)")
+    ->check(CLI::Range(16, 8192))
+    ->type_name("PIXELS");
   app.add_flag("--json", args.json, "print the figures as one JSON line on stdout (a JSON error object on failure)");
   app.add_option("--metric", args.metric, "the discrete conformal metric (default " + args.metric + ")")
     ->check(CLI::IsMember({ICM::Intrinsic_delaunay_metric::name, ICM::Vertex_scaling_metric::name,
@@ -450,10 +479,14 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
 std::string check_output_paths(const Arguments& args)
 {
   std::vector<std::pair<std::string, std::string>> outputs = {{"-o", args.output}};
-  if(!args.svg.empty())
-    outputs.push_back({"--svg", args.svg});
-  if(outputs.size() == 2 && ICM::internal::same_file(args.output, args.svg))
-    return "-o and --svg name the same file '" + args.output + "'";
+  for(const auto& [option, path] :
+      {std::pair<std::string, std::string>{"--svg", args.svg}, {"--png", args.png}, {"--preview", args.preview}})
+    if(!path.empty())
+      outputs.push_back({option, path});
+  for(std::size_t i = 0; i < outputs.size(); ++i)
+    for(std::size_t j = 0; j < i; ++j)
+      if(ICM::internal::same_file(outputs[i].second, outputs[j].second))
+        return outputs[j].first + " and " + outputs[i].first + " name the same file '" + outputs[i].second + "'";
   for(const auto& [option, path] : outputs)
   {
     if(ICM::internal::same_file(path, args.input))
@@ -725,6 +758,23 @@ void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figur
             << t.seconds_parameterize << " s -> " << args.output << "\n";
 }
 
+/// The pictures asked for, with the SVG's title.
+ICM::IO::Uv_pictures pictures_of(const Arguments& args)
+{
+  ICM::IO::Uv_pictures pictures;
+  pictures.svg = args.svg;
+  pictures.png = args.png;
+  pictures.preview = args.preview;
+  pictures.svg_options.title = fs::path(args.input).filename().string() + " — ICM" +
+                               (optimizes_energy(args) ? " (" + args.energy + ")" : std::string()) +
+                               (prescribes_border(args) ? " (" + args.boundary + ")" : std::string());
+#ifdef ICM_HAS_STB_IMAGE_WRITE
+  pictures.png_options.size = args.picture_size;
+  pictures.preview_options.size = args.picture_size;
+#endif
+  return pictures;
+}
+
 // --- the run ---------------------------------------------------------------------------
 
 template <class Metric>
@@ -925,13 +975,9 @@ int run(const Arguments& args, const Failure_report& fail)
 
   t = Clock::now();
   const ICM::IO::Uv_mesh uv_mesh = ICM::IO::make_uv_mesh_from_corners(mesh, uvmap);
-  ICM::IO::Svg_options svg_options;
-  svg_options.title = fs::path(args.input).filename().string() + " — ICM" +
-                      (optimizes_energy(args) ? " (" + args.energy + ")" : std::string()) +
-                      (prescribes_border(args) ? " (" + args.boundary + ")" : std::string());
   ICM::IO::Mesh_writing_options mesh_options;
   mesh_options.binary_ply = args.ply_binary;
-  if(!ICM::IO::write_uv_files(args.output, args.svg, uv_mesh, error, svg_options, mesh_options))
+  if(!ICM::IO::write_uv_files(args.output, pictures_of(args), uv_mesh, error, mesh_options))
     return fail_after_reading(error);
   seconds.write = since(t);
   const ICM::Distortion_measures measures = ICM::measure_distortion_corner_uv(mesh, uvmap);

@@ -24,7 +24,7 @@ configure() {
 echo "== install into $work/prefix"
 cmake --install build --prefix "$work/prefix" >"$work/install.log"
 config_dir=$work/prefix/share/cmake/ICM
-for f in ICMConfig.cmake ICMConfigVersion.cmake ICMTargets.cmake ICMFindCHOLMOD.cmake ICMFindStbRectPack.cmake \
+for f in ICMConfig.cmake ICMConfigVersion.cmake ICMTargets.cmake ICMFindCHOLMOD.cmake ICMFindStbRectPack.cmake ICMFindStbImageWrite.cmake \
          ICMFindTinyGLTF.cmake; do
   [ -f "$config_dir/$f" ] || fail "$f not installed"
 done

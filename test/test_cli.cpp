@@ -521,6 +521,46 @@ TEST(Cli, UnknownOutputExtensionIsRefusedBeforeAnyWork)
   EXPECT_TRUE(box.listing().empty());
 }
 
+/// The width and height a PNG file's header gives, or {0, 0} when it is not a PNG.
+std::pair<int, int> png_size(const std::string& bytes)
+{
+  if(bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    return {0, 0};
+  const auto big_endian = [&bytes](std::size_t at) {
+    int value = 0;
+    for(std::size_t i = at; i < at + 4; ++i)
+      value = (value << 8) | static_cast<unsigned char>(bytes[i]);
+    return value;
+  };
+  return {big_endian(16), big_endian(20)};
+}
+
+TEST(Cli, PngLayoutAndCheckerboardPreview)
+{
+  Sandbox box;
+  const std::string input = quote(data_path("nefertiti.off"));
+  const Sandbox::Result r =
+    box.run(input + " -o out.obj --png layout.png --preview preview.png --picture-size 256 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(box.listing(), (std::vector<std::string>{"layout.png", "out.obj", "preview.png"}));
+  EXPECT_EQ(png_size(read_text(box.file("layout.png"))), std::make_pair(256, 256 + 64)); // with the colour bar
+  EXPECT_EQ(png_size(read_text(box.file("preview.png"))), std::make_pair(256, 256));
+
+  // Refused before any work, nothing written: a name that is not .png, two outputs on one
+  // file, a size out of range.
+  Sandbox refused;
+  Sandbox::Result bad = refused.run(input + " -o out.obj --png layout.jpg");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(lines_of(bad.err).at(0), "icm_param: --png writes PNG: name a .png file, not 'layout.jpg'");
+  bad = refused.run(input + " -o out.obj --png a.png --preview ./a.png");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--png and --preview name the same file"), std::string::npos) << bad.err;
+  bad = refused.run(input + " -o out.obj --preview a.png --picture-size 8");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--picture-size"), std::string::npos) << bad.err;
+  EXPECT_TRUE(refused.listing().empty());
+}
+
 /// The `v` and `vt` lines of an OBJ as numbers.
 struct Obj_numbers
 {

@@ -1,5 +1,5 @@
 // Tests of the output side: Uv_mesh extraction from Surface_mesh, Polyhedron_3 and Seam_mesh,
-// the OBJ, PLY, glTF and SVG writers, the choice of format by extension, and the atomic file
+// the OBJ, PLY, glTF, SVG and PNG writers, the choice of format by extension, and the atomic file
 // replacement they rely on.
 
 #include <ICM/IO/read_polygon_soup.h>
@@ -11,6 +11,10 @@
 #include <ICM/IO/write_uv_ply.h>
 #include <ICM/IO/write_uv_svg.h>
 #include <ICM/internal/Atomic_file.h>
+#ifdef ICM_HAS_STB_IMAGE_WRITE
+#include <ICM/IO/write_uv_png.h>
+#include <stb_image.h> // reads the pictures back (libstb, which the PNG writer links)
+#endif
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>
@@ -25,6 +29,7 @@
 #include "test_support.h"
 #include "uv_output_readers.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -808,6 +813,212 @@ TEST(IoUvFiles, MeshOfAnyFormatAndSvgAllOrNothing)
   EXPECT_FALSE(fs::exists(glb));
   EXPECT_EQ(dir.number_of_entries(), 2u);
 }
+
+#ifdef ICM_HAS_STB_IMAGE_WRITE
+// ------------------------------------------------------------------------------------------
+// write_uv_png, write_uv_preview_png
+
+/// A PNG read back: its size and RGB pixels.
+struct Png_picture
+{
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  std::array<int, 3> at(int x, int y) const
+  {
+    const std::size_t i = 3 * (std::size_t(y) * width + x);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+Png_picture read_png(const std::string& path)
+{
+  const std::string bytes = read_text(path);
+  Png_picture picture;
+  int channels = 0;
+  unsigned char* pixels =
+    stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()),
+                          &picture.width, &picture.height, &channels, 3);
+  if(pixels == nullptr)
+    throw std::runtime_error("not a PNG: " + path);
+  picture.rgb.assign(pixels, pixels + 3 * std::size_t(picture.width) * picture.height);
+  stbi_image_free(pixels);
+  return picture;
+}
+
+TEST(IoPng, LayoutFacesTakeTheColourOfTheirAreaRatioAndFlippedOnesAreBlack)
+{
+  // Four unit right triangles side by side (UV = xy): face 1's UV triangle enlarged 4x in area,
+  // face 2's shrunk 4x, face 3's mirrored (clockwise: flipped).
+  ICM::IO::Uv_mesh m = separate_triangles(4);
+  const auto scale_face = [&m](int f, double s) {
+    for(int k = 1; k < 3; ++k)
+      for(int c = 0; c < 2; ++c)
+        m.uvs[3 * f + k][c] = m.uvs[3 * f][c] + s * (m.uvs[3 * f + k][c] - m.uvs[3 * f][c]);
+  };
+  scale_face(1, 2.);
+  scale_face(2, 0.5);
+  std::swap(m.uvs[10], m.uvs[11]);
+  Temp_dir dir("icm_test_io");
+  ICM::IO::Png_options opt;
+  opt.size = 400;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_png(dir.file("layout.png"), m, error, opt)) << error;
+  const Png_picture png = read_png(dir.file("layout.png"));
+  ASSERT_EQ(png.width, 400);
+  EXPECT_EQ(png.height, 400 + 64); // the colour bar's band
+
+  // Where each face's centroid lands: the same fit as the SVG's.
+  const ICM::IO::Uv_mesh unit = ICM::internal::at_unit_size(m);
+  const ICM::internal::Layout_fit fit = ICM::internal::fit_layout(m, unit, 0., 0., opt.size, opt.margin);
+  const auto centroid_pixel = [&](int f) {
+    std::array<double, 2> c = {0., 0.};
+    for(int k = 0; k < 3; ++k)
+      for(int i = 0; i < 2; ++i)
+        c[i] += m.uvs[m.face_uvs[f][k]][i] / 3;
+    const std::array<double, 2> p = fit(c);
+    return png.at(static_cast<int>(p[0]), static_cast<int>(p[1]));
+  };
+  const std::vector<double> ratios = ICM::IO::log_area_ratios(m);
+  for(int f = 0; f < 3; ++f)
+  {
+    const std::array<int, 3> expected = ICM::internal::diverging_colour(ratios[f] / opt.log_ratio_range);
+    const std::array<int, 3> seen = centroid_pixel(f);
+    for(int k = 0; k < 3; ++k)
+      EXPECT_NEAR(seen[k], expected[k], 2) << "face " << f << " channel " << k;
+  }
+  EXPECT_GT(centroid_pixel(1)[0], centroid_pixel(1)[2] + 60); // enlarged: red
+  EXPECT_GT(centroid_pixel(2)[2], centroid_pixel(2)[0] + 60); // shrunk: blue
+  EXPECT_EQ(centroid_pixel(3), (std::array<int, 3>{0, 0, 0}));
+  const auto count_green = [](const Png_picture& picture) {
+    std::size_t green = 0;
+    for(int y = 0; y < picture.height; ++y)
+      for(int x = 0; x < picture.width; ++x)
+      {
+        const std::array<int, 3> c = picture.at(x, y);
+        green += c[1] > 200 && c[0] < 60 && c[2] < 60;
+      }
+    return green;
+  };
+  EXPECT_GT(count_green(png), 100u); // the flipped face's outline and the legend's key
+  EXPECT_EQ(png.at(2, 2), (std::array<int, 3>{255, 255, 255}));
+
+  // A layout mirrored as a whole is drawn mirrored back: nothing is flipped.
+  ICM::IO::Uv_mesh mirrored = separate_triangles(4);
+  for(auto& t : mirrored.uvs)
+    t[0] = -t[0];
+  ASSERT_TRUE(ICM::IO::write_uv_png(dir.file("mirrored.png"), mirrored, error, opt)) << error;
+  EXPECT_EQ(count_green(read_png(dir.file("mirrored.png"))), 0u);
+}
+
+TEST(IoPng, PreviewOfAFlatSquareIsItsCheckerboard)
+{
+  // The unit square in the xy plane with UV = xy, seen head on (yaw 0, pitch 0: the camera on
+  // +z, x right, y up): 4 x 4 checks, lit fully, so each check's centre has its exact colour
+  // and the colours alternate.
+  ICM::IO::Uv_mesh m;
+  m.positions = {{{0., 0., 0.}}, {{1., 0., 0.}}, {{1., 1., 0.}}, {{0., 1., 0.}}};
+  m.uvs = {{{0., 0.}}, {{1., 0.}}, {{1., 1.}}, {{0., 1.}}};
+  m.face_positions = m.face_uvs = {{{0, 1, 2}}, {{0, 2, 3}}};
+  ICM::IO::Preview_options opt;
+  opt.size = 200;
+  opt.checks = 4;
+  opt.yaw = 0;
+  opt.pitch = 0;
+  Temp_dir dir("icm_test_io");
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_preview_png(dir.file("preview.png"), m, error, opt)) << error;
+  const Png_picture png = read_png(dir.file("preview.png"));
+  ASSERT_EQ(png.width, 200);
+  ASSERT_EQ(png.height, 200);
+  const double side = 0.92 * 200, low = 0.5 * (200 - side); // the square fills 92 % of the picture
+  std::set<std::array<int, 3>> colours[2];
+  for(int i = 0; i < 4; ++i)
+    for(int j = 0; j < 4; ++j)
+    {
+      const int x = static_cast<int>(low + (i + 0.5) * side / 4), y = static_cast<int>(low + (3.5 - j) * side / 4);
+      colours[(i + j) % 2].insert(png.at(x, y));
+    }
+  EXPECT_EQ(colours[0], (std::set<std::array<int, 3>>{{242, 242, 242}}));
+  EXPECT_EQ(colours[1], (std::set<std::array<int, 3>>{{214, 96, 77}}));
+  EXPECT_EQ(png.at(1, 1), (std::array<int, 3>{255, 255, 255})); // the background
+
+  // Seen from behind, lit the same (both sides alike); the nearer of two overlapping squares hides
+  // the farther one.
+  ICM::IO::Uv_mesh two = m;
+  for(const auto& p : m.positions)
+    two.positions.push_back({p[0], p[1], -1.});
+  for(const auto& t : m.uvs)
+    two.uvs.push_back({t[0] + 0.25, t[1]}); // shifted by a check: the colours swap
+  two.face_positions.push_back({{4, 5, 6}});
+  two.face_positions.push_back({{4, 6, 7}});
+  two.face_uvs.push_back({{4, 5, 6}});
+  two.face_uvs.push_back({{4, 6, 7}});
+  ASSERT_TRUE(ICM::IO::write_uv_preview_png(dir.file("two.png"), two, error, opt)) << error;
+  const Png_picture front = read_png(dir.file("two.png"));
+  const int cx = static_cast<int>(low + 0.5 * side / 4), cy = static_cast<int>(low + 3.5 * side / 4);
+  EXPECT_EQ(front.at(cx, cy), png.at(cx, cy)); // the square at z = 0 is in front
+  opt.yaw = 180;
+  ASSERT_TRUE(ICM::IO::write_uv_preview_png(dir.file("back.png"), two, error, opt)) << error;
+  const Png_picture back = read_png(dir.file("back.png"));
+  EXPECT_NE(back.at(200 - 1 - cx, cy), png.at(cx, cy)); // from behind, the shifted square is in front
+}
+
+TEST(IoPng, BadOptionsAndMeshesAreRefusedByNameAndNothingIsWritten)
+{
+  Temp_dir dir("icm_test_io");
+  const ICM::IO::Uv_mesh m = grid_uv_mesh();
+  std::string error;
+  ICM::IO::Png_options small;
+  small.size = 8;
+  EXPECT_FALSE(ICM::IO::write_uv_png(dir.file("a.png"), m, error, small));
+  EXPECT_NE(error.find("picture size"), std::string::npos) << error;
+  ICM::IO::Png_options range;
+  range.log_ratio_range = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(ICM::IO::write_uv_png(dir.file("a.png"), m, error, range));
+  EXPECT_NE(error.find("log ratio range"), std::string::npos) << error;
+  ICM::IO::Preview_options checks;
+  checks.checks = 0;
+  EXPECT_FALSE(ICM::IO::write_uv_preview_png(dir.file("a.png"), m, error, checks));
+  EXPECT_NE(error.find("checkerboard"), std::string::npos) << error;
+  ICM::IO::Preview_options pitch;
+  pitch.pitch = 100;
+  EXPECT_FALSE(ICM::IO::write_uv_preview_png(dir.file("a.png"), m, error, pitch));
+  EXPECT_NE(error.find("pitch"), std::string::npos) << error;
+  ICM::IO::Uv_mesh bad = m;
+  bad.uvs[0][0] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(ICM::IO::write_uv_preview_png(dir.file("a.png"), bad, error));
+  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+  EXPECT_EQ(dir.number_of_entries(), 0u);
+}
+
+TEST(IoUvFiles, MeshAndEveryPictureAllOrNothing)
+{
+  const ICM::IO::Uv_mesh m = seam_uv_mesh();
+  Temp_dir dir("icm_test_io");
+  ICM::IO::Uv_pictures pictures;
+  pictures.svg = dir.file("a.svg");
+  pictures.png = dir.file("a.png");
+  pictures.preview = dir.file("a_preview.png");
+  pictures.png_options.size = pictures.preview_options.size = 64;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::write_uv_files(dir.file("a.obj"), pictures, m, error)) << error;
+  EXPECT_EQ(read_png(pictures.png).width, 64);
+  EXPECT_EQ(read_png(pictures.preview).height, 64);
+  EXPECT_EQ(dir.number_of_entries(), 4u);
+
+  // A preview that cannot be written: neither the mesh nor the other pictures are.
+  pictures.svg = dir.file("b.svg");
+  pictures.png = dir.file("b.png");
+  pictures.preview = (dir.path() / "nope" / "b_preview.png").string();
+  EXPECT_FALSE(ICM::IO::write_uv_files(dir.file("b.obj"), pictures, m, error));
+  EXPECT_NE(error.find("b_preview.png"), std::string::npos) << error;
+  pictures.preview = dir.file("b_preview.png");
+  pictures.preview_options.size = 1;
+  EXPECT_FALSE(ICM::IO::write_uv_files(dir.file("b.obj"), pictures, m, error));
+  EXPECT_NE(error.find("picture size"), std::string::npos) << error;
+  EXPECT_EQ(dir.number_of_entries(), 4u);
+}
+#endif // ICM_HAS_STB_IMAGE_WRITE
 
 // ------------------------------------------------------------------------------------------
 // write_file_atomically

@@ -120,20 +120,36 @@ inline void put_colour(std::ostream& os, const std::array<int, 3>& rgb)
     os << hex[(c >> 4) & 15] << hex[c & 15];
 }
 
-/// Draws one layout fitted into the square [x0, x0 + size] x [y0, y0 + size].
-/// Returns the number of flipped faces.
-inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0, double y0, const IO::Svg_options& opt)
+/// Where a layout goes in a square of a picture. A layout that came out mirrored (clockwise
+/// overall) is not a defect of its faces: it is mirrored back, so that only faces oriented
+/// against the majority count as flipped. The layout is fitted with its aspect ratio kept and
+/// centred; one of (nearly) zero extent is drawn as a point rather than blown up to infinity.
+struct Layout_fit
+{
+  double mirror = 1., umin = 0., vmax = 0., scale = 1., ox = 0., oy = 0.;
+  /// The mean edge length on the picture, which sets how thick lines are drawn.
+  double mean_edge = 0.;
+
+  /// Picture coordinates of a UV, y down (as SVG and PNG have it) so that UV up is drawn up.
+  std::array<double, 2> operator()(const std::array<double, 2>& t) const
+  {
+    return {ox + (mirror * t[0] - umin) * scale, oy + (vmax - t[1]) * scale};
+  }
+  /// Whether face `f` of `unit` (the layout at unit size) is flipped against the majority.
+  bool flipped(const IO::Uv_mesh& unit, std::size_t f) const { return mirror * IO::uv_signed_area(unit, f) < 0.; }
+};
+
+/// Fits the layout of `m` (and `unit`, the same at unit size) into the square
+/// [x0, x0 + size] x [y0, y0 + size], `margin` inside its border.
+inline Layout_fit fit_layout(const IO::Uv_mesh& m, const IO::Uv_mesh& unit, double x0, double y0, double size,
+                             double margin)
 {
   const std::size_t nf = m.number_of_faces();
-  const std::vector<double> ratios = IO::log_area_ratios(m);
-
-  // A layout that came out mirrored (clockwise overall) is not a defect of its faces:
-  // mirror it back so that only faces oriented against the majority count as flipped.
+  Layout_fit fit;
   double total_signed = 0.;
-  const IO::Uv_mesh unit = at_unit_size(m); // no overflow or underflow of the areas
   for(std::size_t f = 0; f < nf; ++f)
     total_signed += IO::uv_signed_area(unit, f);
-  const double mirror = total_signed < 0. ? -1. : 1.;
+  fit.mirror = total_signed < 0. ? -1. : 1.;
 
   double umin = std::numeric_limits<double>::infinity(), umax = -umin;
   double vmin = umin, vmax = -umin;
@@ -144,7 +160,7 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
     {
       const auto& t = m.uvs[m.face_uvs[f][k]];
       const auto& s = m.uvs[m.face_uvs[f][(k + 1) % 3]];
-      const double u = mirror * t[0];
+      const double u = fit.mirror * t[0];
       umin = (std::min)(umin, u);
       umax = (std::max)(umax, u);
       vmin = (std::min)(vmin, t[1]);
@@ -152,34 +168,46 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
       edge_sum += std::hypot(s[0] - t[0], s[1] - t[1]);
     }
   }
-  const double avail = (std::max)(0., opt.size - 2. * opt.margin);
-  const double extent = nf > 0 ? (std::max)(umax - umin, vmax - vmin) : 0.;
-  // A layout of (nearly) zero extent is drawn as a point rather than blown up to infinity.
-  const double fit = extent > 0. ? avail / extent : 1.;
-  const double scale = std::isfinite(fit) ? fit : 1.;
-  // Centre the layout in its square.
-  const double ox = nf > 0 ? x0 + opt.margin + 0.5 * (avail - (umax - umin) * scale) : 0.;
-  const double oy = nf > 0 ? y0 + opt.margin + 0.5 * (avail - (vmax - vmin) * scale) : 0.;
+  if(nf == 0)
+    return fit;
+  const double avail = (std::max)(0., size - 2. * margin);
+  const double extent = (std::max)(umax - umin, vmax - vmin);
+  const double scale = extent > 0. ? avail / extent : 1.;
+  fit.scale = std::isfinite(scale) ? scale : 1.;
+  fit.umin = umin;
+  fit.vmax = vmax;
+  fit.ox = x0 + margin + 0.5 * (avail - (umax - umin) * fit.scale);
+  fit.oy = y0 + margin + 0.5 * (avail - (vmax - vmin) * fit.scale);
+  fit.mean_edge = fit.scale * edge_sum / (3. * nf);
+  return fit;
+}
+
+/// Draws one layout fitted into the square [x0, x0 + size] x [y0, y0 + size].
+/// Returns the number of flipped faces.
+inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0, double y0, const IO::Svg_options& opt)
+{
+  const std::size_t nf = m.number_of_faces();
+  const std::vector<double> ratios = IO::log_area_ratios(m);
+  const IO::Uv_mesh unit = at_unit_size(m); // no overflow or underflow of the areas
+  const Layout_fit fit = fit_layout(m, unit, x0, y0, opt.size, opt.margin);
 
   auto put_face = [&](std::size_t f) {
     os << "<polygon points=\"";
     for(int k = 0; k < 3; ++k)
     {
-      const auto& t = m.uvs[m.face_uvs[f][k]];
+      const std::array<double, 2> p = fit(m.uvs[m.face_uvs[f][k]]);
       if(k > 0)
         os << ' ';
-      put_coordinate(os, ox + (mirror * t[0] - umin) * scale);
+      put_coordinate(os, p[0]);
       os << ',';
-      // SVG's y axis points down: flip it so that UV up is up.
-      put_coordinate(os, oy + (vmax - t[1]) * scale);
+      put_coordinate(os, p[1]);
     }
     os << '"';
   };
 
   // Hairlines scaled to the mean edge length on screen, so that small meshes get visible
   // edges and dense ones are not drowned in ink.
-  const double mean_edge_px = nf > 0 ? scale * edge_sum / (3. * nf) : 0.;
-  const double stroke = (std::min)(0.8, (std::max)(0.1, 0.04 * mean_edge_px));
+  const double stroke = (std::min)(0.8, (std::max)(0.1, 0.04 * fit.mean_edge));
   const bool edges = nf <= opt.max_faces_with_edges;
 
   os << "<g stroke=\"";
@@ -196,7 +224,7 @@ inline std::size_t draw_layout(std::ostream& os, const IO::Uv_mesh& m, double x0
   std::vector<std::size_t> flipped;
   for(std::size_t f = 0; f < nf; ++f)
   {
-    if(mirror * IO::uv_signed_area(unit, f) < 0.)
+    if(fit.flipped(unit, f))
     {
       flipped.push_back(f);
       continue;
