@@ -460,17 +460,20 @@ inline bool put_preview_png(std::ostream& os, const IO::Uv_mesh& m, const IO::Pr
   return write_png(os, downsampled(draw_png_preview(m, opt), picture_supersampling));
 }
 
-/// Writes what `put` encodes to `path`, atomically, after checking `m`.
-template <class Put>
-bool write_png_file(const std::string& path, const IO::Uv_mesh& m, std::string& error, Put&& put)
+/// Writes the picture `put` encodes of `m` to `path`, atomically, after `check` accepted the
+/// options and `m` was found valid; otherwise `error` names the reason and nothing is written.
+template <class Options, class Check, class Put>
+bool write_png_file(const std::string& path, const IO::Uv_mesh& m, std::string& error, const Options& opt, Check check,
+                    Put put)
 {
   std::string reason;
-  if(!IO::is_valid_uv_mesh(m, reason))
+  if(!check(opt, reason) || !IO::is_valid_uv_mesh(m, reason))
   {
     error = "cannot write '" + path + "': " + reason;
     return false;
   }
-  return write_file_atomically(path, put, error);
+  return write_file_atomically(
+    path, [&](std::ostream& os) { return put(os, m, opt); }, error);
 }
 
 } // namespace internal
@@ -489,14 +492,7 @@ namespace IO {
 inline bool write_uv_png(const std::string& path, const Uv_mesh& m, std::string& error,
                          const Png_options& opt = Png_options())
 {
-  std::string reason;
-  if(!internal::check_png_options(opt, reason))
-  {
-    error = "cannot write '" + path + "': " + reason;
-    return false;
-  }
-  return internal::write_png_file(path, m, error,
-                                  [&](std::ostream& os) { return internal::put_layout_png(os, m, opt); });
+  return internal::write_png_file(path, m, error, opt, internal::check_png_options, internal::put_layout_png);
 }
 
 /// Writes a PNG picture of the surface of `m` textured with a checkerboard through its UVs,
@@ -507,14 +503,7 @@ inline bool write_uv_png(const std::string& path, const Uv_mesh& m, std::string&
 inline bool write_uv_preview_png(const std::string& path, const Uv_mesh& m, std::string& error,
                                  const Preview_options& opt = Preview_options())
 {
-  std::string reason;
-  if(!internal::check_preview_options(opt, reason))
-  {
-    error = "cannot write '" + path + "': " + reason;
-    return false;
-  }
-  return internal::write_png_file(path, m, error,
-                                  [&](std::ostream& os) { return internal::put_preview_png(os, m, opt); });
+  return internal::write_png_file(path, m, error, opt, internal::check_preview_options, internal::put_preview_png);
 }
 
 } // namespace IO
