@@ -25,6 +25,8 @@ Runs (each one cache file, RUN.jsonl, whose first line records how it was made):
   opened   compare --open on the closed genus-0 meshes: section opened
   border   icm_param --boundary circle|square --json on some disks: section border
   scaling  scaling.sh with KMAX=--scaling-kmax into the cache: section scaling-short
+  summary  compare --methods icm,lscm,arap on a few disks and closed meshes:
+           section summary, which goes into README.md (--readme), not doc/benchmarks.md
 Section scaling renders a series written earlier by scaling.sh (--scaling-series), which
 is too slow to rerun here.
 
@@ -91,10 +93,18 @@ CONE_METHODS = ",".join([f"{prefix}{n}" for _, prefix, _ in CONE_ENERGIES for n 
 BFF_8_CONES = {"sphere966.off": 0.065, "cow.off": 15.6, "bull.off": 20.2, "camel.off": 13.9,
                "bear.off": 1.24, "armadillo.off": 6.95, "bunny00.off": 2.40}
 
+# The README's few rows: ICM's default call against CGAL's LSCM and ARAP (on ICM's cut where
+# ICM cuts), on disks and closed meshes.
+SUMMARY_MESHES = ["nefertiti.off", "three_peaks.off", "camelhead.off", "sphere966.off", "cow.off",
+                  "bunny00.off"]
+SUMMARY_METHODS = ["icm", "lscm", "arap"]
+# Sections that go into the README rather than the document of --doc.
+README_SECTIONS = ["summary"]
+
 SECTIONS = {  # section: the runs it reads
     "disks": ["all"], "energies": ["all"], "nondisk": ["all"], "surfaces": ["all", "icm"],
     "surface-energies": ["senergies"], "opened": ["opened"], "border": ["all", "border"],
-    "scaling": [], "scaling-short": ["scaling"], "cones": ["cones"],
+    "scaling": [], "scaling-short": ["scaling"], "cones": ["cones"], "summary": ["summary"],
 }
 REGISTRY_METRICS = ["icm_free_boundary", "icm_vertex_scaling", "icm_inversive_distance",
                     "icm_circle_packing"]
@@ -233,6 +243,8 @@ def run(name, a, dirs):
                                   ["--methods", SURFACE_ENERGY_METHODS])
     elif name == "cones":
         rows, cmds = compare_rows(a, meshes(CONE_MESHES), ["--methods", CONE_METHODS])
+    elif name == "summary":
+        rows, cmds = compare_rows(a, meshes(SUMMARY_MESHES), ["--methods", ",".join(SUMMARY_METHODS)])
     elif name == "opened":
         paths = meshes(CLOSED_GENUS_0)
         rows, cmds = compare_rows(a, paths, ["--open", "--methods", OPENED_METHODS])
@@ -596,11 +608,36 @@ def section_scaling(series):
     return plot_scaling.table(rows).rstrip("\n")
 
 
+def section_summary(data):
+    """A few rows for the README: log area distortion (eq. 8), flipped faces and border
+    crossings, seconds, for ICM and CGAL's LSCM and ARAP."""
+    _, rows = data["summary"]
+    out = ["| mesh | ICM | CGAL LSCM | CGAL ARAP |", "|---|---|---|---|"]
+
+    def figures(r):
+        if r is None:
+            return ""
+        if not r["status"].startswith("ok"):
+            return cell(r["status"])
+        folds = integer(r.get("flipped")) + (f' + {r["border_crossings"]} crossings'
+                                             if r.get("border_crossings") else "")
+        return f'{num(r.get("log_area_distortion"), 3)}, {folds} flipped, {sec(r.get("seconds"))} s'
+
+    for mesh, group in by_mesh(rows, SUMMARY_METHODS):
+        by_method = {r["method"]: r for r in group}
+        icm = by_method.get("icm", {})
+        kind = "closed" if icm.get("loops") == 0 else "disk"
+        out.append(f'| {mesh} ({group[0]["faces"]} faces, {kind}, {integer(icm.get("cones"))} cones) | '
+                   f'{figures(by_method.get("icm"))} | {figures(by_method.get("lscm"))} | '
+                   f'{figures(by_method.get("arap"))} |')
+    return "\n".join(out)
+
+
 RENDER = {"disks": section_disks, "energies": section_energies, "nondisk": section_nondisk,
           "surfaces": section_surfaces, "surface-energies": section_surface_energies,
           "cones": section_cones,
           "opened": section_opened, "border": section_border,
-          "scaling-short": section_scaling_short}
+          "scaling-short": section_scaling_short, "summary": section_summary}
 
 
 def header(section, metas, hint, rendered_from):
@@ -661,6 +698,8 @@ def main():
                     help="where the runs' JSON lines go (default: build/tables)")
     ap.add_argument("--doc", default=os.path.join(ROOT, "doc", "benchmarks.md"),
                     help="the document to rewrite (default: doc/benchmarks.md)")
+    ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
+                    help="the document of the README sections (default: README.md)")
     ap.add_argument("--time-limit", type=float, default=60, help="seconds per run (default 60)")
     ap.add_argument("--big-faces", type=int, default=15000,
                     help="meshes with more faces get --runs 1 (default 15000)")
@@ -695,9 +734,12 @@ def main():
         for r in missing:
             data[r] = run(r, a, dirs)
 
-    with open(a.doc, encoding="utf-8") as f:
-        doc = f.read()
+    docs = {}  # path: its text, rewritten section by section
     for s in sections:
+        path = a.readme if s in README_SECTIONS else a.doc
+        if path not in docs:
+            with open(path, encoding="utf-8") as f:
+                docs[path] = f.read()
         hint = f"/usr/bin/python3 benchmark/tables.py --sections {s}"
         if a.meshes:
             hint += " --meshes " + " ".join(a.meshes)
@@ -716,11 +758,13 @@ def main():
         if a.print:
             print(f"<!-- {s} -->\n{body}\n")
         else:
-            doc = replace_section(doc, s, body)
+            docs[path] = replace_section(docs[path], s, body)
     if not a.print:
-        with open(a.doc, "w", encoding="utf-8") as f:
-            f.write(doc)
-        print(f"tables: rewrote {', '.join(sections)} in {relative(a.doc)}", file=sys.stderr)
+        for path, text in docs.items():
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+        print(f"tables: rewrote {', '.join(sections)} in {', '.join(relative(p) for p in docs)}",
+              file=sys.stderr)
     return 0
 
 
