@@ -14,8 +14,6 @@
 #endif
 
 #include <algorithm>
-#include <array>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -65,75 +63,12 @@ inline std::vector<int> metis_order(const Eigen::SparseMatrix<double, Eigen::Col
   return ordered ? order : std::vector<int>();
 }
 
-/// The upper triangle of `upper` restricted to the unknowns `part` (in their order).
-inline Eigen::SparseMatrix<double, Eigen::ColMajor, int>
-principal_submatrix(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& upper, const std::vector<int>& part,
-                    std::vector<int>& position)
-{
-  for(std::size_t i = 0; i < part.size(); ++i)
-    position[part[i]] = static_cast<int>(i);
-  std::vector<Eigen::Triplet<double, int>> entries;
-  for(int j : part)
-    for(Eigen::SparseMatrix<double, Eigen::ColMajor, int>::InnerIterator it(upper, j); it; ++it)
-      if(position[it.row()] >= 0)
-        entries.emplace_back(position[it.row()], position[j], 1.0);
-  Eigen::SparseMatrix<double, Eigen::ColMajor, int> sub(static_cast<int>(part.size()), static_cast<int>(part.size()));
-  sub.setFromTriplets(entries.begin(), entries.end());
-  for(int v : part)
-    position[v] = -1;
-  return sub;
-}
-
-/// Nested dissection with its two halves ordered at once: METIS's first separator
-/// (`cholmod_bisect`), then each side ordered by METIS on its own thread, the separator last.
-/// The levels below the first take most of METIS's time, so two cores order in about 60% of
-/// the time of one (lion-head refined to 1.07M faces: 2.6 s for one call); the fill is that
-/// of one dissection with the same first separator. Empty when the bisection fails.
-inline std::vector<int> two_sided_metis_order(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& upper)
-{
-  const int n = static_cast<int>(upper.rows());
-  std::vector<int> side(n);
-  {
-    cholmod_common common;
-    cholmod_start(&common);
-    common.print = 0;
-    cholmod_sparse pattern = pattern_of(upper);
-    const bool bisected =
-      cholmod_bisect(&pattern, nullptr, 0, 1, side.data(), &common) >= 0 && common.status == CHOLMOD_OK;
-    cholmod_finish(&common);
-    if(!bisected)
-      return {};
-  }
-  std::array<std::vector<int>, 3> parts; // left, right, separator
-  for(int v = 0; v < n; ++v)
-    parts[side[v]].push_back(v);
-  if(parts[0].empty() || parts[1].empty())
-    return {};
-  std::vector<int> position(n, -1);
-  const Eigen::SparseMatrix<double, Eigen::ColMajor, int> left = principal_submatrix(upper, parts[0], position);
-  const Eigen::SparseMatrix<double, Eigen::ColMajor, int> right = principal_submatrix(upper, parts[1], position);
-  std::vector<int> right_order;
-  std::thread right_thread([&right, &right_order] { right_order = metis_order(right); });
-  const std::vector<int> left_order = metis_order(left);
-  right_thread.join();
-  if(left_order.empty() || right_order.empty())
-    return {};
-  std::vector<int> order;
-  order.reserve(n);
-  for(int i : left_order)
-    order.push_back(parts[0][i]);
-  for(int i : right_order)
-    order.push_back(parts[1][i]);
-  order.insert(order.end(), parts[2].begin(), parts[2].end());
-  return order;
-}
-
 } // namespace elimination
 #endif
 
 /// A fill-reducing order of the symmetric pattern `upper` (its upper triangle, column by
 /// column): `order[i]` is the unknown eliminated i-th. Nested dissection (METIS through
-/// CHOLMOD, its two halves on two threads) from `nested_dissection_min_vertices` unknowns
+/// CHOLMOD) from `nested_dissection_min_vertices` unknowns
 /// when CHOLMOD is present, Eigen's AMD otherwise.
 inline std::vector<int> fill_reducing_order(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& upper)
 {
@@ -141,9 +76,12 @@ inline std::vector<int> fill_reducing_order(const Eigen::SparseMatrix<double, Ei
 #ifdef ICM_HAS_CHOLMOD
   if(n >= nested_dissection_min_vertices)
   {
-    std::vector<int> order = elimination::two_sided_metis_order(upper);
-    if(order.empty())
-      order = elimination::metis_order(upper);
+    // One METIS call on one thread: METIS draws from one random number generator shared by
+    // the whole process, so two calls at once (each half of a first separator on its own
+    // thread, as ICM once did to save 40% of this time) draw in an order that changes from
+    // run to run, and with it the order, the rounding and the map (armadillo's and
+    // refined_elephant's output differed from run to run).
+    const std::vector<int> order = elimination::metis_order(upper);
     if(!order.empty())
       return order;
   }
