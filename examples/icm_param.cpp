@@ -709,17 +709,26 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   return j;
 }
 
+/// "1 chart", "3 charts": `n` and the noun, plural unless one.
+std::string count_of(long long n, const std::string& noun)
+{
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+/// The summary line: components and charts apart, as the JSON's `components` and `charts`
+/// (the overlap removal cuts a component into several charts).
 void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figures& t,
                         const ICM::Distortion_measures& measures)
 {
   std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
-            << t.components << " chart(s), " << t.cones << " cones, " << t.seam_edges << " seam edges, " << t.newton
-            << " Newton iterations, max |k| " << t.curvature_error << ", ";
+            << count_of(t.components, "component") << ", " << count_of(t.charts, "chart") << ", "
+            << count_of(t.cones, "cone") << ", " << count_of(static_cast<long long>(t.seam_edges), "seam edge") << ", "
+            << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", ";
   if(t.optimized_energy)
     std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in " << t.energy_iterations
               << " steps, ";
   if(args.atlas)
-    std::cerr << "atlas " << args.atlas->size << " texels, " << t.atlas_charts << " charts covering "
+    std::cerr << "atlas " << args.atlas->size << " texels, " << count_of(t.atlas_charts, "chart") << " covering "
               << 100 * t.atlas_utilization << "%, ";
   std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
             << t.seconds_parameterize << " s -> " << args.output << "\n";

@@ -655,6 +655,29 @@ double json_number(const std::string& json, const std::string& key)
   return v.empty() || v == "null" ? std::nan("") : std::stod(v);
 }
 
+// --- the summary line, --help, selection files ------------------------------------------
+
+TEST(Cli, SummaryLineCountsComponentsAndChartsAsTheJsonDoes)
+{
+  // eight.off without cones is one closed component of genus 2 whose chart the overlap
+  // removal cuts into pieces: the summary must not give the components as the charts.
+  Sandbox box;
+  const std::string input = quote(data_path("eight.off")) + " --cones 0";
+  const std::string json = json_line_of(box.run(input + " -o json.obj --json"));
+  const Sandbox::Result r = box.run(input + " -o summary.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(, (\d+) (components?), (\d+) (charts?), (\d+) (cones?), )")))
+    << r.err;
+  EXPECT_EQ(m[1].str(), json_value(json, "components"));
+  EXPECT_EQ(m[3].str(), json_value(json, "charts"));
+  EXPECT_EQ(m[5].str(), json_value(json, "cones"));
+  EXPECT_GT(json_number(json, "charts"), json_number(json, "components")) << "eight.off no longer shows the difference";
+  // One of a kind is singular, more are plural.
+  for(int i : {1, 3, 5})
+    EXPECT_EQ(m[i + 1].str().back() == 's', m[i].str() != "1") << m[i] << " " << m[i + 1];
+}
+
 TEST(Cli, EveryEnergyRunsOnADisk)
 {
   Sandbox box;
