@@ -814,6 +814,42 @@ TEST(Cli, SquareAndCircleBordersOfADisk)
   EXPECT_EQ(json_value(free, "boundary"), "\"free\"");
 }
 
+/// The UV area of `m`'s faces over their 3D area.
+double uv_area_over_3d_area(const ICM::IO::Uv_mesh& m)
+{
+  double uv_area = 0, area = 0;
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+  {
+    const auto& p = m.face_positions[f];
+    const auto& t = m.face_uvs[f];
+    const std::array<double, 2>&a = m.uvs[t[0]], &b = m.uvs[t[1]], &c = m.uvs[t[2]];
+    uv_area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    std::array<double, 3> u{}, v{};
+    for(int i = 0; i < 3; ++i)
+    {
+      u[i] = m.positions[p[1]][i] - m.positions[p[0]][i];
+      v[i] = m.positions[p[2]][i] - m.positions[p[0]][i];
+    }
+    area += 0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+  }
+  return uv_area / area;
+}
+
+TEST(Cli, PrescribedBordersKeepTheThreeDArea)
+{
+  // Every border condition gives each chart its 3D area in UV, the prescribed ones too (a
+  // circle's disk used to come out hundreds of times too large).
+  Sandbox box;
+  for(const char* boundary : {"free", "circle", "square"})
+  {
+    const std::string obj = std::string(boundary) + ".obj";
+    json_line_of(box.run(quote(data_path("three_peaks.off")) + " -o " + obj + " --json --boundary " + boundary));
+    EXPECT_NEAR(uv_area_over_3d_area(icm_test::read_obj_uv_mesh(box.file(obj).string())), 1.0, 1e-9) << boundary;
+  }
+  json_line_of(box.run(quote(data_path("pig.off")) + " -o domain.obj --json --boundary circle-domain"));
+  EXPECT_NEAR(uv_area_over_3d_area(icm_test::read_obj_uv_mesh(box.file("domain.obj").string())), 1.0, 1e-9);
+}
+
 TEST(Cli, BoundaryConditionsRefuseWhatTheyCannotDo)
 {
   Sandbox box;

@@ -470,20 +470,6 @@ void component_cones_and_seams(
     component_seams.clear();
 }
 
-/// Each chart at its 3D scale: UV area = 3D area (normalised units).
-inline void scale_to_3d_area(const Mesh_index& disk, std::vector<Uv>& uv)
-{
-  double uv_area = 0, area = 0;
-  for(const auto& f : disk.faces)
-  {
-    uv_area += 0.5 * twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]);
-    area += triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
-  }
-  const double scale = std::sqrt(area / uv_area);
-  for(Uv& p : uv)
-    p = {p[0] * scale, p[1] * scale};
-}
-
 /// The connected pieces of a cut disk (the overlap removal's pieces share no wedge): the
 /// piece of each wedge, and their count.
 inline int wedge_pieces(const Mesh_index& disk, std::vector<int>& piece_of_wedge)
