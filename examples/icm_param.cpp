@@ -369,7 +369,9 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->check(cone_validator())
     ->type_name("VERTEX:DEGREES");
   app
-    .add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
+    .add_option("--seams", args.seams,
+                "a CGAL selection file: cut along its edges (vertex index pairs, third line on), cones at the vertices "
+                "of its first line (CGAL's orbifold cone files), their angles chosen by the optimum")
     ->type_name("FILE");
   app.add_flag("--keep-overlaps", args.keep_overlaps,
                "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one "
@@ -505,6 +507,22 @@ user_cones(const Arguments& args, const std::vector<std::vector<Mesh::Vertex_ind
     cones[by_index[vertex].front()] = 2 * M_PI - degrees * M_PI / 180;
   }
   return cones;
+}
+
+/// The cones (first line) and seams (third line on) of the --seams file, as CGAL's orbifold
+/// and seam examples write them: the cones join `cones` with the angle the optimum chooses (a
+/// --cone at the same vertex keeps its angle); empty `error` on success.
+bool read_selection_cones_and_seams(const Arguments& args, const Mesh& mesh,
+                                    const std::vector<std::vector<Mesh::Vertex_index>>& by_index,
+                                    std::map<Mesh::Vertex_index, double>& cones, std::vector<Mesh::Edge_index>& seams,
+                                    std::string& error)
+{
+  std::vector<Mesh::Vertex_index> selected;
+  if(!ICM::IO::read_selection(args.seams, mesh, by_index, selected, seams, error))
+    return false;
+  for(Mesh::Vertex_index v : selected)
+    cones.emplace(v, std::nan(""));
+  return true;
 }
 
 // --- progress --------------------------------------------------------------------------
@@ -843,6 +861,10 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
     options.cones.max_log_scale = args.cone_target;
   if(args.cone_placement == "exact")
     options.cones.placement = ICM::Cone_placement::Exact_optimum;
+  // A selection file's cones and seams are the singular set, as in CGAL's orbifold examples
+  // (its seams alone turn automatic cones off in the library): --cones adds to them.
+  if(!args.seams.empty() && !args.cones_asked)
+    options.automatic_cones = false;
   Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
   options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
 
@@ -905,11 +927,11 @@ int run(const Arguments& args, const Failure_report& fail)
 
   const std::vector<std::vector<Mesh::Vertex_index>> by_index = vertices_by_file_index(mesh, read);
   std::string error;
-  const std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
+  std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
   if(!error.empty())
     return fail_after_reading(error);
   std::vector<Mesh::Edge_index> user_seams;
-  if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, by_index, user_seams, error))
+  if(!args.seams.empty() && !read_selection_cones_and_seams(args, mesh, by_index, cones, user_seams, error))
     return fail_after_reading(error);
 
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;

@@ -678,6 +678,36 @@ TEST(Cli, SummaryLineCountsComponentsAndChartsAsTheJsonDoes)
     EXPECT_EQ(m[i + 1].str().back() == 's', m[i].str() != "1") << m[i] << " " << m[i + 1];
 }
 
+/// The vertices of sphere966.off farthest along the four directions of a regular tetrahedron:
+/// four cones far apart.
+const char* const sphere966_tetrahedron_cones = "458 198 166 484";
+
+TEST(Cli, ConeOnlySelectionFileGivesTheCones)
+{
+  // CGAL's orbifold examples give their cones as a selection file of one line: the cones of
+  // the map, their angles chosen by the optimum, and no automatic cone besides.
+  Sandbox box;
+  write_text(box.work() / "cones.selection.txt", std::string(sphere966_tetrahedron_cones) + "\n");
+  const std::string json =
+    json_line_of(box.run(quote(data_path("sphere966.off")) + " -o out.obj --json --seams cones.selection.txt"));
+  EXPECT_EQ(json_number(json, "cones"), 4);
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_GT(json_number(json, "seam_edges"), 0) << "the cut joins the cones";
+  EXPECT_LT(json_number(json, "seam_length_error"), 1e-9);
+
+  // A bad index on the first line is refused, naming the line; nothing is written.
+  Sandbox bad;
+  write_text(bad.work() / "bad.selection.txt", "458 198 9999 484\n");
+  const Sandbox::Result refused = bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt");
+  expect_clean_failure(bad, refused, "line 1: vertex 9999 out of range (the mesh has 926 vertices)",
+                       {"bad.selection.txt"});
+  EXPECT_EQ(refused.exit_code, 1);
+  // So is a file that selects nothing.
+  write_text(bad.work() / "bad.selection.txt", "\n\n\n");
+  expect_clean_failure(bad, bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt"),
+                       "names no vertex (first line: cones) and no edge", {"bad.selection.txt"});
+}
+
 TEST(Cli, EveryEnergyRunsOnADisk)
 {
   Sandbox box;
