@@ -105,6 +105,21 @@ const char* const usage =
   "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
   "       icm_param --help | --version\n";
 
+/// The end of --help: what a script needs besides the options (doc/cli.md says the same).
+const char* const help_footer =
+  "Exit status:\n"
+  "  0  the outputs are written (and after --help or --version)\n"
+  "  1  the run failed, nothing is written: the input (or the --seams file, or a --cone vertex) cannot be\n"
+  "     read or is not a mesh the options can take, the parameterization failed, an output cannot be\n"
+  "     written, or memory ran out\n"
+  "  2  the command line is wrong, nothing is read or written (the reason and the usage go to stderr)\n"
+  "\n"
+  "Units: the UVs are in the mesh's units, each chart at its 3D scale (its UV area equals its 3D area),\n"
+  "the charts side by side; with --atlas SIZE they are in [0,1]^2 instead, all charts at one scale.\n"
+  "\n"
+  "Example:\n"
+  "  icm_param examples/data/three_peaks.off -o three_peaks_uv.obj --svg three_peaks_uv.svg --json\n";
+
 std::string version_text()
 {
   return std::string("icm_param ") + ICM_VERSION + " (CGAL " + CGAL_VERSION_STR + ", Eigen " +
@@ -317,6 +332,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                "split non-manifold vertex.",
                "icm_param");
   app.set_version_flag("--version", version_text());
+  app.footer(help_footer);
   app.allow_extras(); // unknown options are reported below, by name
   std::string cones_text, atlas_text, padding_text, packer_text;
   std::vector<std::string> cone_texts;

@@ -678,6 +678,30 @@ TEST(Cli, SummaryLineCountsComponentsAndChartsAsTheJsonDoes)
     EXPECT_EQ(m[i + 1].str().back() == 's', m[i].str() != "1") << m[i] << " " << m[i + 1];
 }
 
+TEST(Cli, HelpListsEveryExitCodeTheUnitsAndAnExample)
+{
+  Sandbox box;
+  const Sandbox::Result help = box.run("--help");
+  ASSERT_EQ(help.exit_code, 0) << help.err;
+  // The codes of a success, of a failed run (an unreadable input) and of a wrong command line:
+  // every path that returns in icm_param.cpp returns one of these three.
+  const std::vector<Sandbox::Result> runs = {
+    box.run(quote(data_path("nefertiti.off")) + " -o out.obj"), box.run("missing.off -o missing.obj"),
+    box.run(quote(data_path("nefertiti.off")) + " -o out.obj --no-such-option")};
+  std::vector<int> codes;
+  for(const Sandbox::Result& r : runs)
+    codes.push_back(r.exit_code);
+  EXPECT_EQ(codes, (std::vector<int>{0, 1, 2}));
+  EXPECT_NE(help.out.find("Exit status:"), std::string::npos) << help.out;
+  for(int code : codes)
+    EXPECT_NE(help.out.find("\n  " + std::to_string(code) + "  "), std::string::npos)
+      << "exit code " << code << " missing in\n"
+      << help.out;
+  EXPECT_NE(help.out.find("its UV area equals its 3D area"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--atlas SIZE they are in [0,1]^2"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("Example:\n  icm_param examples/data/"), std::string::npos) << help.out;
+}
+
 /// The vertices of sphere966.off farthest along the four directions of a regular tetrahedron:
 /// four cones far apart.
 const char* const sphere966_tetrahedron_cones = "458 198 166 484";
