@@ -108,6 +108,21 @@ const char* const usage =
   "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
   "       icm_param --help | --version\n";
 
+/// The end of --help: what a script needs besides the options (doc/cli.md says the same).
+const char* const help_footer =
+  "Exit status:\n"
+  "  0  the outputs are written (and after --help or --version)\n"
+  "  1  the run failed, nothing is written: the input (or the --seams file, or a --cone vertex) cannot be\n"
+  "     read or is not a mesh the options can take, the parameterization failed, an output cannot be\n"
+  "     written, or memory ran out\n"
+  "  2  the command line is wrong, nothing is read or written (the reason and the usage go to stderr)\n"
+  "\n"
+  "Units: the UVs are in the mesh's units, each chart at its 3D scale (its UV area equals its 3D area),\n"
+  "the charts side by side; with --atlas SIZE they are in [0,1]^2 instead, all charts at one scale.\n"
+  "\n"
+  "Example:\n"
+  "  icm_param examples/data/three_peaks.off -o three_peaks_uv.obj --svg three_peaks_uv.svg --json\n";
+
 std::string version_text()
 {
   return std::string("icm_param ") + ICM_VERSION + " (CGAL " + CGAL_VERSION_STR + ", Eigen " +
@@ -334,6 +349,7 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
                "split non-manifold vertex.",
                "icm_param");
   app.set_version_flag("--version", version_text());
+  app.footer(help_footer);
   app.allow_extras(); // unknown options are reported below, by name
   std::string cones_text, atlas_text, padding_text, packer_text;
   std::vector<std::string> cone_texts;
@@ -398,7 +414,9 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
     ->check(cone_validator())
     ->type_name("VERTEX:DEGREES");
   app
-    .add_option("--seams", args.seams, "cut along the edges of a CGAL selection file (vertex index pairs, third line)")
+    .add_option("--seams", args.seams,
+                "a CGAL selection file: cut along its edges (vertex index pairs, third line on), cones at the vertices "
+                "of its first line (CGAL's orbifold cone files), their angles chosen by the optimum")
     ->type_name("FILE");
   app.add_flag("--keep-overlaps", args.keep_overlaps,
                "keep a chart that folds over itself (only count the overlaps); with a prescribed --boundary, whose one "
@@ -540,13 +558,34 @@ user_cones(const Arguments& args, const std::vector<std::vector<Mesh::Vertex_ind
   return cones;
 }
 
+/// The cones (first line) and seams (third line on) of the --seams file, as CGAL's orbifold
+/// and seam examples write them: the cones join `cones` with the angle the optimum chooses (a
+/// --cone at the same vertex keeps its angle); empty `error` on success.
+bool read_selection_cones_and_seams(const Arguments& args, const Mesh& mesh,
+                                    const std::vector<std::vector<Mesh::Vertex_index>>& by_index,
+                                    std::map<Mesh::Vertex_index, double>& cones, std::vector<Mesh::Edge_index>& seams,
+                                    std::string& error)
+{
+  std::vector<Mesh::Vertex_index> selected;
+  if(!ICM::IO::read_selection(args.seams, mesh, by_index, selected, seams, error))
+    return false;
+  for(Mesh::Vertex_index v : selected)
+    cones.emplace(v, std::nan(""));
+  return true;
+}
+
 // --- progress --------------------------------------------------------------------------
 
-/// "icm_param: optimum 42%" on stderr, rewritten in place on a terminal.
+/// "icm_param: cones 12%, 9 s, about 70 s left" on stderr, rewritten in place on a terminal:
+/// the stage, the share of the run done, the seconds since it began and, once enough of it
+/// is done to extrapolate from, the time left at the pace so far (a rough guess: the shares
+/// are fixed per stage, not measured). Shown whenever the stage changes, otherwise at most
+/// four times a second on a terminal and every few seconds in a log, whatever the rate of
+/// the library's callbacks (one per greedy cone round).
 class Progress_line
 {
 public:
-  explicit Progress_line(bool shown) : shown_(shown)
+  explicit Progress_line(bool shown) : shown_(shown), start_(Clock::now())
   {
 #ifndef _WIN32
     terminal_ = ::isatty(2) != 0;
@@ -556,9 +595,17 @@ public:
   {
     if(!shown_)
       return;
-    const int percent = static_cast<int>(std::floor(100 * std::clamp(fraction, 0.0, 1.0)));
-    std::cerr << (terminal_ ? "\r" : "") << "icm_param: " << stage << " " << percent << "%"
-              << (terminal_ ? "\x1b[K" : "\n") << std::flush;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if(stage == stage_ && elapsed - shown_at_ < (terminal_ ? 0.25 : 5.0))
+      return;
+    stage_ = stage;
+    shown_at_ = elapsed;
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    std::cerr << (terminal_ ? "\r" : "") << "icm_param: " << stage << " "
+              << static_cast<int>(std::floor(100 * fraction)) << "%, " << duration_text(elapsed);
+    if(fraction >= least_fraction_for_an_estimate && fraction < 1)
+      std::cerr << ", about " << duration_text(elapsed * (1 - fraction) / fraction) << " left";
+    std::cerr << (terminal_ ? "\x1b[K" : "\n") << std::flush;
     open_ = terminal_;
   }
   /// Ends the line on a terminal, so that what follows starts on its own.
@@ -570,7 +617,20 @@ public:
   }
 
 private:
+  using Clock = std::chrono::steady_clock;
+  /// Below this share done, the pace so far says too little of the rest.
+  static constexpr double least_fraction_for_an_estimate = 0.03;
+
+  static std::string duration_text(double seconds)
+  {
+    return seconds < 120 ? std::to_string(static_cast<long>(seconds)) + " s"
+                         : std::to_string(static_cast<long>(std::lround(seconds / 60))) + " min";
+  }
+
   bool shown_, terminal_ = false, open_ = false;
+  Clock::time_point start_;
+  std::string stage_;
+  double shown_at_ = 0;
 };
 
 // --- output ----------------------------------------------------------------------------
@@ -742,17 +802,26 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   return j;
 }
 
+/// "1 chart", "3 charts": `n` and the noun, plural unless one.
+std::string count_of(long long n, const std::string& noun)
+{
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+/// The summary line: components and charts apart, as the JSON's `components` and `charts`
+/// (the overlap removal cuts a component into several charts).
 void print_summary_line(const Arguments& args, const Mesh& mesh, const Run_figures& t,
                         const ICM::Distortion_measures& measures)
 {
   std::cerr << args.input << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces, "
-            << t.components << " chart(s), " << t.cones << " cones, " << t.seam_edges << " seam edges, " << t.newton
-            << " Newton iterations, max |k| " << t.curvature_error << ", ";
+            << count_of(t.components, "component") << ", " << count_of(t.charts, "chart") << ", "
+            << count_of(t.cones, "cone") << ", " << count_of(static_cast<long long>(t.seam_edges), "seam edge") << ", "
+            << t.newton << " Newton iterations, max |k| " << t.curvature_error << ", ";
   if(t.optimized_energy)
     std::cerr << t.energy << " energy " << t.initial_energy << " -> " << t.final_energy << " in " << t.energy_iterations
               << " steps, ";
   if(args.atlas)
-    std::cerr << "atlas " << args.atlas->size << " texels, " << t.atlas_charts << " charts covering "
+    std::cerr << "atlas " << args.atlas->size << " texels, " << count_of(t.atlas_charts, "chart") << " covering "
               << 100 * t.atlas_utilization << "%, ";
   std::cerr << measures.flipped_faces << " flipped faces, log area distortion " << measures.log_area_distortion << ", "
             << t.seconds_parameterize << " s -> " << args.output << "\n";
@@ -884,6 +953,10 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
     options.cones.max_log_scale = args.cone_target;
   if(args.cone_placement == "exact")
     options.cones.placement = ICM::Cone_placement::Exact_optimum;
+  // A selection file's cones and seams are the singular set, as in CGAL's orbifold examples
+  // (its seams alone turn automatic cones off in the library): --cones adds to them.
+  if(!args.seams.empty() && !args.cones_asked)
+    options.automatic_cones = false;
   Progress_line progress(!args.quiet && num_faces(mesh) >= progress_min_faces);
   options.progress = [&progress](const std::string& stage, double fraction) { progress(stage, fraction); };
 
@@ -946,11 +1019,11 @@ int run(const Arguments& args, const Failure_report& fail)
 
   const std::vector<std::vector<Mesh::Vertex_index>> by_index = vertices_by_file_index(mesh, read);
   std::string error;
-  const std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
+  std::map<Mesh::Vertex_index, double> cones = user_cones(args, by_index, error);
   if(!error.empty())
     return fail_after_reading(error);
   std::vector<Mesh::Edge_index> user_seams;
-  if(!args.seams.empty() && !ICM::IO::read_seam_selection(args.seams, mesh, by_index, user_seams, error))
+  if(!args.seams.empty() && !read_selection_cones_and_seams(args, mesh, by_index, cones, user_seams, error))
     return fail_after_reading(error);
 
   auto uvmap = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;

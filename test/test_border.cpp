@@ -322,6 +322,43 @@ TEST(BorderConditionCircle, DiskBorderIsACircle)
   }
 }
 
+/// The UV area of `mesh`'s faces over their 3D area.
+double uv_area_over_3d_area(const Surface_mesh& mesh, Surface_mesh::Property_map<vertex_descriptor, Point_2> uv)
+{
+  double uv_area = 0, area = 0;
+  for(auto f : faces(mesh))
+  {
+    const halfedge_descriptor h = halfedge(f, mesh);
+    const vertex_descriptor a = source(h, mesh), b = target(h, mesh), c = target(next(h, mesh), mesh);
+    uv_area += CGAL::area(uv[a], uv[b], uv[c]);
+    area += std::sqrt(CGAL::squared_area(mesh.point(a), mesh.point(b), mesh.point(c)));
+  }
+  return uv_area / area;
+}
+
+TEST(BorderConditionArea, PrescribedBordersKeepTheThreeDArea)
+{
+  // A prescribed border fixes the shape, not the size: the chart comes at its 3D scale, as
+  // a free border's and every chart of ICM::parameterize do (the vertex pinned for the scale
+  // used to leave a circle's disk hundreds of times too large).
+  Surface_mesh disk, pig;
+  ASSERT_TRUE(read_mesh("three_peaks.off", disk));
+  ASSERT_TRUE(read_mesh("pig.off", pig));
+  auto uv = add_uv_map(disk);
+  Outcome run = parameterize(disk, Parameterizer<ICM::Circular_border<Surface_mesh>>(), uv);
+  ASSERT_EQ(run.status, SMP::OK) << run.report.message;
+  EXPECT_NEAR(uv_area_over_3d_area(disk, uv), 1.0, 1e-9) << "circle";
+  EXPECT_LE(run.report.circle_deviation, 1e-8);
+  run = parameterize(disk, Parameterizer<ICM::Square_border<Surface_mesh>>(), uv);
+  ASSERT_EQ(run.status, SMP::OK) << run.report.message;
+  EXPECT_NEAR(uv_area_over_3d_area(disk, uv), 1.0, 1e-9) << "square";
+  expect_rectangle(disk, uv, run, "three_peaks, scaled");
+  auto pig_uv = add_uv_map(pig);
+  run = parameterize(pig, Parameterizer<ICM::Circle_domain>(), pig_uv);
+  ASSERT_EQ(run.status, SMP::OK) << run.report.message;
+  EXPECT_NEAR(uv_area_over_3d_area(pig, pig_uv), 1.0, 1e-9) << "circle domain";
+}
+
 TEST(BorderConditionPrescribed, RegularPolygonAnglesAreReproduced)
 {
   Surface_mesh mesh;

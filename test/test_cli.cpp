@@ -695,6 +695,83 @@ double json_number(const std::string& json, const std::string& key)
   return v.empty() || v == "null" ? std::nan("") : std::stod(v);
 }
 
+// --- the summary line, --help, selection files ------------------------------------------
+
+TEST(Cli, SummaryLineCountsComponentsAndChartsAsTheJsonDoes)
+{
+  // eight.off without cones is one closed component of genus 2 whose chart the overlap
+  // removal cuts into pieces: the summary must not give the components as the charts.
+  Sandbox box;
+  const std::string input = quote(data_path("eight.off")) + " --cones 0";
+  const std::string json = json_line_of(box.run(input + " -o json.obj --json"));
+  const Sandbox::Result r = box.run(input + " -o summary.obj");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(, (\d+) (components?), (\d+) (charts?), (\d+) (cones?), )")))
+    << r.err;
+  EXPECT_EQ(m[1].str(), json_value(json, "components"));
+  EXPECT_EQ(m[3].str(), json_value(json, "charts"));
+  EXPECT_EQ(m[5].str(), json_value(json, "cones"));
+  EXPECT_GT(json_number(json, "charts"), json_number(json, "components")) << "eight.off no longer shows the difference";
+  // One of a kind is singular, more are plural.
+  for(int i : {1, 3, 5})
+    EXPECT_EQ(m[i + 1].str().back() == 's', m[i].str() != "1") << m[i] << " " << m[i + 1];
+}
+
+TEST(Cli, HelpListsEveryExitCodeTheUnitsAndAnExample)
+{
+  Sandbox box;
+  const Sandbox::Result help = box.run("--help");
+  ASSERT_EQ(help.exit_code, 0) << help.err;
+  // The codes of a success, of a failed run (an unreadable input) and of a wrong command line:
+  // every path that returns in icm_param.cpp returns one of these three.
+  const std::vector<Sandbox::Result> runs = {
+    box.run(quote(data_path("nefertiti.off")) + " -o out.obj"), box.run("missing.off -o missing.obj"),
+    box.run(quote(data_path("nefertiti.off")) + " -o out.obj --no-such-option")};
+  std::vector<int> codes;
+  for(const Sandbox::Result& r : runs)
+    codes.push_back(r.exit_code);
+  EXPECT_EQ(codes, (std::vector<int>{0, 1, 2}));
+  EXPECT_NE(help.out.find("Exit status:"), std::string::npos) << help.out;
+  for(int code : codes)
+    EXPECT_NE(help.out.find("\n  " + std::to_string(code) + "  "), std::string::npos)
+      << "exit code " << code << " missing in\n"
+      << help.out;
+  EXPECT_NE(help.out.find("its UV area equals its 3D area"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--atlas SIZE they are in [0,1]^2"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("Example:\n  icm_param examples/data/"), std::string::npos) << help.out;
+}
+
+/// The vertices of sphere966.off farthest along the four directions of a regular tetrahedron:
+/// four cones far apart.
+const char* const sphere966_tetrahedron_cones = "458 198 166 484";
+
+TEST(Cli, ConeOnlySelectionFileGivesTheCones)
+{
+  // CGAL's orbifold examples give their cones as a selection file of one line: the cones of
+  // the map, their angles chosen by the optimum, and no automatic cone besides.
+  Sandbox box;
+  write_text(box.work() / "cones.selection.txt", std::string(sphere966_tetrahedron_cones) + "\n");
+  const std::string json =
+    json_line_of(box.run(quote(data_path("sphere966.off")) + " -o out.obj --json --seams cones.selection.txt"));
+  EXPECT_EQ(json_number(json, "cones"), 4);
+  EXPECT_EQ(json_number(json, "flipped_faces"), 0);
+  EXPECT_GT(json_number(json, "seam_edges"), 0) << "the cut joins the cones";
+  EXPECT_LT(json_number(json, "seam_length_error"), 1e-9);
+
+  // A bad index on the first line is refused, naming the line; nothing is written.
+  Sandbox bad;
+  write_text(bad.work() / "bad.selection.txt", "458 198 9999 484\n");
+  const Sandbox::Result refused = bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt");
+  expect_clean_failure(bad, refused, "line 1: vertex 9999 out of range (the mesh has 926 vertices)",
+                       {"bad.selection.txt"});
+  EXPECT_EQ(refused.exit_code, 1);
+  // So is a file that selects nothing.
+  write_text(bad.work() / "bad.selection.txt", "\n\n\n");
+  expect_clean_failure(bad, bad.run(quote(data_path("sphere966.off")) + " -o out.obj --seams bad.selection.txt"),
+                       "names no vertex (first line: cones) and no edge", {"bad.selection.txt"});
+}
+
 TEST(Cli, EveryEnergyRunsOnADisk)
 {
   Sandbox box;
@@ -829,6 +906,42 @@ TEST(Cli, SquareAndCircleBordersOfADisk)
   // The default is the free border, named in the JSON.
   const std::string free = json_line_of(box.run(input + " -o free.obj --json --cones 0"));
   EXPECT_EQ(json_value(free, "boundary"), "\"free\"");
+}
+
+/// The UV area of `m`'s faces over their 3D area.
+double uv_area_over_3d_area(const ICM::IO::Uv_mesh& m)
+{
+  double uv_area = 0, area = 0;
+  for(std::size_t f = 0; f < m.number_of_faces(); ++f)
+  {
+    const auto& p = m.face_positions[f];
+    const auto& t = m.face_uvs[f];
+    const std::array<double, 2>&a = m.uvs[t[0]], &b = m.uvs[t[1]], &c = m.uvs[t[2]];
+    uv_area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    std::array<double, 3> u{}, v{};
+    for(int i = 0; i < 3; ++i)
+    {
+      u[i] = m.positions[p[1]][i] - m.positions[p[0]][i];
+      v[i] = m.positions[p[2]][i] - m.positions[p[0]][i];
+    }
+    area += 0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+  }
+  return uv_area / area;
+}
+
+TEST(Cli, PrescribedBordersKeepTheThreeDArea)
+{
+  // Every border condition gives each chart its 3D area in UV, the prescribed ones too (a
+  // circle's disk used to come out hundreds of times too large).
+  Sandbox box;
+  for(const char* boundary : {"free", "circle", "square"})
+  {
+    const std::string obj = std::string(boundary) + ".obj";
+    json_line_of(box.run(quote(data_path("three_peaks.off")) + " -o " + obj + " --json --boundary " + boundary));
+    EXPECT_NEAR(uv_area_over_3d_area(icm_test::read_obj_uv_mesh(box.file(obj).string())), 1.0, 1e-9) << boundary;
+  }
+  json_line_of(box.run(quote(data_path("pig.off")) + " -o domain.obj --json --boundary circle-domain"));
+  EXPECT_NEAR(uv_area_over_3d_area(icm_test::read_obj_uv_mesh(box.file("domain.obj").string())), 1.0, 1e-9);
 }
 
 TEST(Cli, BoundaryConditionsRefuseWhatTheyCannotDo)

@@ -305,6 +305,75 @@ TEST(IoSeamSelection, EveryMalformedFileIsRefusedWithItsReason)
   EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
 }
 
+TEST(IoSeamSelection, FirstLineVerticesAreConesBesideTheEdges)
+{
+  // CGAL's orbifold examples give the cones as the first line, often the file's only one.
+  Surface_mesh sm;
+  build_grid(sm); // vertex 4 is the one interior vertex
+  Temp_dir dir("icm_seams");
+  std::vector<Surface_mesh::Vertex_index> cones;
+  std::vector<Surface_mesh::Edge_index> seams;
+  std::string error;
+  write_text(dir.file("cones.selection.txt"), "4 4");
+  ASSERT_TRUE(ICM::IO::read_selection(dir.file("cones.selection.txt"), sm, cones, seams, error)) << error;
+  EXPECT_EQ(cones, (std::vector<Surface_mesh::Vertex_index>{Surface_mesh::Vertex_index(4)})) << "each once";
+  EXPECT_TRUE(seams.empty());
+  // Vertices and edges: both.
+  write_text(dir.file("both.selection.txt"), "4\n\n0 1 1 4\n");
+  ASSERT_TRUE(ICM::IO::read_selection(dir.file("both.selection.txt"), sm, cones, seams, error)) << error;
+  EXPECT_EQ(cones, (std::vector<Surface_mesh::Vertex_index>{Surface_mesh::Vertex_index(4)}));
+  EXPECT_EQ(seams.size(), 2u);
+  // Edges only, as CGAL's Seam_mesh examples write them: no cone.
+  write_text(dir.file("edges.selection.txt"), "\n\n1 4\n");
+  ASSERT_TRUE(ICM::IO::read_selection(dir.file("edges.selection.txt"), sm, cones, seams, error)) << error;
+  EXPECT_TRUE(cones.empty());
+  EXPECT_EQ(seams.size(), 1u);
+  // The seams-only reader keeps to the edges, as CGAL's Seam_mesh::add_seams does.
+  ASSERT_TRUE(ICM::IO::read_seam_selection(dir.file("both.selection.txt"), sm, seams, error)) << error;
+  EXPECT_EQ(seams.size(), 2u);
+}
+
+TEST(IoSeamSelection, EveryMalformedConeOrEdgeIsRefusedWithItsReason)
+{
+  Surface_mesh sm;
+  build_grid(sm);
+  Temp_dir dir("icm_seams");
+  const std::pair<std::string, std::string> cases[] = {
+    {"", "names no vertex (first line: cones) and no edge (third line on: seams)"},
+    {"\n\n\n", "names no vertex (first line: cones) and no edge"},
+    {"4 x\n", "line 1, value 2: 'x' is not a vertex index"},
+    {"4 99\n", "line 1: vertex 99 out of range (the mesh has 9 vertices)"},
+    {"0\n", "line 1: vertex 0 is on the border (a cone is an interior vertex)"},
+    {"4\n\n0 99\n", "line 3: vertex 99 out of range"},
+    {"4\n\n0 8\n", "line 3: vertices 0 and 8 are not joined by an edge"},
+    {"4\n\n0 1 2\n", "odd number"},
+  };
+  int n = 0;
+  for(const auto& [text, reason] : cases)
+  {
+    const std::string path = dir.file("case" + std::to_string(n++) + ".selection.txt");
+    write_text(path, text);
+    std::vector<Surface_mesh::Vertex_index> cones;
+    std::vector<Surface_mesh::Edge_index> seams;
+    std::string error;
+    EXPECT_FALSE(ICM::IO::read_selection(path, sm, cones, seams, error)) << text;
+    EXPECT_NE(error.find(reason), std::string::npos) << "got: " << error;
+    EXPECT_NE(error.find(path), std::string::npos) << "the file is named: " << error;
+  }
+  // A vertex split at a non-manifold point has two copies: which would be the cone?
+  const std::vector<std::vector<Surface_mesh::Vertex_index>> by_index = {
+    {Surface_mesh::Vertex_index(0)}, {}, {Surface_mesh::Vertex_index(4), Surface_mesh::Vertex_index(5)}};
+  write_text(dir.file("split.selection.txt"), "2\n");
+  std::vector<Surface_mesh::Vertex_index> cones;
+  std::vector<Surface_mesh::Edge_index> seams;
+  std::string error;
+  EXPECT_FALSE(ICM::IO::read_selection(dir.file("split.selection.txt"), sm, by_index, cones, seams, error));
+  EXPECT_NE(error.find("line 1: vertex 2 is non-manifold and was split into 2 vertices"), std::string::npos) << error;
+  write_text(dir.file("dropped.selection.txt"), "1\n");
+  EXPECT_FALSE(ICM::IO::read_selection(dir.file("dropped.selection.txt"), sm, by_index, cones, seams, error));
+  EXPECT_NE(error.find("line 1: vertex 1 is in no face of the mesh"), std::string::npos) << error;
+}
+
 // ------------------------------------------------------------------------------------------
 // make_uv_mesh
 

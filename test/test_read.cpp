@@ -25,6 +25,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iterator>
+#include <set>
 #include <locale>
 #include <sstream>
 #include <string>
@@ -619,6 +620,39 @@ TEST(LibraryEntryPoints, ProgressCallbackReportsStagesWithGrowingFractions)
     optimum_calls += calls[i].first == "optimum";
   }
   EXPECT_EQ(optimum_calls, 2); // one per component
+}
+
+TEST(LibraryEntryPoints, ProgressMovesThroughTheGreedyConeRounds)
+{
+  // The cones stage reports each greedy round (a solve of the whole mesh each, the bulk of a
+  // large closed mesh's time), not only its start; within a stage the fraction never falls.
+  Mesh mesh;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(icm_test::data_path("sphere966.off"), mesh));
+  std::vector<std::pair<std::string, double>> calls;
+  ICM::Surface_parameterization_options options;
+  options.progress = [&calls](const std::string& stage, double fraction) { calls.push_back({stage, fraction}); };
+  std::vector<double> rounds;
+  options.cones.progress = [&rounds](double done) { rounds.push_back(done); };
+  auto uv = mesh.add_property_map<Mesh::Halfedge_index, Kernel::Point_2>("h:uv").first;
+  const ICM::Surface_parameterization_report report = ICM::parameterize(mesh, uv, options);
+  ASSERT_EQ(report.status, SMP::OK) << report.message;
+  std::set<double> cone_fractions;
+  for(std::size_t i = 0; i < calls.size(); ++i)
+  {
+    if(i > 0 && calls[i].first == calls[i - 1].first)
+    {
+      EXPECT_GE(calls[i].second, calls[i - 1].second) << calls[i].first << " at call " << i;
+    }
+    if(calls[i].first == "cones")
+      cone_fractions.insert(calls[i].second);
+  }
+  EXPECT_GT(cone_fractions.size(), 1u) << "the cones stage reported only its start";
+  EXPECT_LE(*cone_fractions.rbegin(), 0.35) << "the cut starts at 35%";
+  // The user's own callback of the placement sees the rounds too, ending at 1.
+  ASSERT_GE(rounds.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(rounds.begin(), rounds.end()));
+  EXPECT_EQ(rounds.back(), 1.0);
+  EXPECT_GE(report.charts.at(0).cones.size() + 1, rounds.size()) << "one call per round and one at the end";
 }
 
 /// nefertiti with every coordinate multiplied by `scale`.

@@ -342,6 +342,35 @@ TEST(Surfaces, UserSeamsFromASelectionFileAreTakenAsGiven)
   EXPECT_NEAR(c.seam_length, length / std::sqrt(CGAL::Polygon_mesh_processing::area(mesh)), 1e-12);
 }
 
+TEST(Surfaces, ConesFromASelectionFileAreTheConesOfTheMap)
+{
+  // CGAL's orbifold examples give the cones as a selection file's first line: read, they are
+  // user cones whose angles the optimum chooses, and with automatic cones off they are the
+  // map's only cones, the cut joining them.
+  Mesh mesh = read(icm_test::data_path("sphere966.off"));
+  icm_test::Scratch_directory dir("icm_cones");
+  const std::string path = (dir.path() / "cones.selection.txt").string();
+  icm_test::write_text(path, "458 198 166 484\n"); // the vertices farthest along a tetrahedron's directions
+  std::vector<Mesh::Vertex_index> cones;
+  std::vector<Mesh::Edge_index> seams;
+  std::string error;
+  ASSERT_TRUE(ICM::IO::read_selection(path, mesh, cones, seams, error)) << error;
+  ASSERT_EQ(cones.size(), 4u);
+  EXPECT_TRUE(seams.empty());
+  std::map<Mesh::Vertex_index, double> user_cones;
+  for(Mesh::Vertex_index v : cones)
+    user_cones[v] = std::nan("");
+  ICM::Surface_parameterization_options options;
+  options.automatic_cones = false;
+  const Result r = run(mesh, "sphere966 with the cones of a selection file", options, user_cones);
+  ASSERT_EQ(r.report.charts.size(), 1u);
+  const ICM::Chart_report& c = r.report.charts[0];
+  ASSERT_EQ(c.cones.size(), 4u);
+  EXPECT_NEAR(total_cone_curvature(c), 4 * M_PI, 1e-8);
+  EXPECT_EQ(r.measures.flipped_faces, 0u);
+  EXPECT_GT(r.seams.size(), 0u);
+}
+
 TEST(Surfaces, UserSeamsThatDoNotCutADiskAreRefused)
 {
   Mesh eight = read(icm_test::data_path("eight.off"));

@@ -208,6 +208,12 @@ struct Cone_options
   /// Unset: the run's `Surface_parameterization_options::newton` (called directly, the
   /// defaults).
   std::optional<Newton_options> newton;
+  /// Called after each greedy round with the share of the placement done, from 0 to 1 and
+  /// never less than before: the cones placed of `max_cones`, or how far the largest
+  /// |u - u0| has come down (in log) to `max_log_scale`, whichever is further. A round takes
+  /// a solve of the whole mesh, so a large mesh spends seconds in each; `parameterize`
+  /// reports it as its "cones" stage. It must not throw.
+  std::function<void(double done)> progress;
 };
 
 inline Status check_options(const Cone_options& options, const std::string& prefix = "cones.")

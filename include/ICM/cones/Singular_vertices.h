@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +81,48 @@ std::vector<int> curvature_minima(const internal::Mesh_index& index, const Metri
   std::sort(minima.begin(), minima.end(), [&](int a, int b) { return scale[a] < scale[b]; });
   return minima;
 }
+
+namespace internal {
+
+/// `Cone_options::progress` of one greedy placement: the share done after each round, the
+/// cones placed since `first_cones` of those up to `wanted_cones`, or the fall of the largest
+/// |u - u0| from the first round's to the target in log (the distortion falls about
+/// geometrically with the cones), whichever is further, never less than reported before.
+class Greedy_progress
+{
+public:
+  Greedy_progress(const Cone_options& options, int first_cones, int wanted_cones)
+    : callback_(&options.progress), target_(options.max_log_scale), first_(first_cones), wanted_(wanted_cones)
+  {}
+
+  void round(int cones, double max_log_scale)
+  {
+    if(!*callback_)
+      return;
+    if(std::isnan(first_scale_))
+      first_scale_ = max_log_scale;
+    double done = wanted_ > first_ ? static_cast<double>(cones - first_) / (wanted_ - first_) : 0.0;
+    if(target_ > 0 && first_scale_ > target_ && max_log_scale > 0)
+      done = std::max(done, std::log(first_scale_ / max_log_scale) / std::log(first_scale_ / target_));
+    report(done);
+  }
+  void finish() { report(1.0); }
+
+private:
+  void report(double done)
+  {
+    done_ = std::max(done_, std::clamp(done, 0.0, 1.0));
+    if(*callback_)
+      (*callback_)(done_);
+  }
+
+  const std::function<void(double)>* callback_;
+  double target_;
+  int first_, wanted_;
+  double first_scale_ = std::nan(""), done_ = 0;
+};
+
+} // namespace internal
 
 /// What `greedy_cones` chose and how the distortion fell.
 struct Cone_selection
@@ -217,6 +260,7 @@ Cone_selection linearized_greedy_cones(Problem& problem, const internal::Mesh_in
   if(!problem.is_determined() && wanted > 0)
     make_cone(problem.uniform_curvature_extreme(chi < 0));
   const std::vector<double> area = problem.vertex_areas();
+  internal::Greedy_progress progress(options, static_cast<int>(selection.cones.size()), wanted);
   for(;;)
   {
     const Eigen::VectorXd u = problem.solve();
@@ -231,8 +275,10 @@ Cone_selection linearized_greedy_cones(Problem& problem, const internal::Mesh_in
       for(int v : selection.cones) // the seeds were fixed from the start: unknown
         selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
       selection.log_scale = problem.solve();
+      progress.finish();
       return selection;
     }
+    progress.round(static_cast<int>(selection.cones.size()), selection.max_log_scale.back());
     int best = peaks[0];
     double least_spread = HUGE_VAL;
     for(std::size_t i = 0; peaks.size() > 1 && i < peaks.size(); ++i)
@@ -281,6 +327,7 @@ Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metri
     }
   const Newton_options newton = newton_of(options.newton, Newton_options());
   Eigen::VectorXd u = metric.u0;
+  internal::Greedy_progress progress(options, static_cast<int>(selection.cones.size()), options.max_cones);
   for(;;)
   {
     Inverse_curvature_map<SparseSolver, Metric> solver(index, metric, free_vertices_off(is_singular));
@@ -307,7 +354,11 @@ Cone_selection exact_greedy_cones(const internal::Mesh_index& index, const Metri
     selection.max_log_scale.push_back(largest);
     const int room = options.max_cones - static_cast<int>(selection.cones.size());
     if(peaks.empty() || room <= 0)
+    {
+      progress.finish();
       return selection;
+    }
+    progress.round(static_cast<int>(selection.cones.size()), largest);
     // Up to half as many new cones as there are, at least one: a cone changes the optimum
     // mostly near itself, so far-apart peaks of one round are nearly the peaks the next
     // rounds would find one by one, at a fraction of the rounds.

@@ -45,6 +45,9 @@
 namespace ICM {
 namespace internal {
 
+/// The share of a component's progress that its cones stage reports (the cut starts there).
+constexpr double cones_stage_share = 0.35;
+
 /// The progress of one component: `start` of the whole done before it, `span` its share.
 struct Stage_progress
 {
@@ -222,7 +225,7 @@ Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, st
 template <class Metric, class Solver>
 Status place_automatic_cones(const Mesh_index& index, const Surface_parameterization_options& options,
                              std::vector<char>& is_singular, std::vector<double>& expected_curvature,
-                             Eigen::VectorXd& first_step)
+                             Eigen::VectorXd& first_step, const Stage_progress& progress = Stage_progress())
 {
   const Circle_packing_metric packing(index);
   const Metric metric = make_metric<Metric>(index, {});
@@ -232,14 +235,26 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
   std::optional<Linearized_cone_problem<Solver, Metric>> problem;
   if(options.cones.placement == Cone_placement::Linearized)
     problem.emplace(index, metric, is_singular);
+  // The greedy rounds (a solve of the whole mesh each) take the stage's time on a large mesh,
+  // after the free-boundary Newton of a surface with a border, which takes about as long:
+  // each reports its share of the stage, so that a progress line moves through it.
+  const double rounds_start = closed ? 0.0 : 0.5;
   if(!closed)
   {
     const auto* linearized = problem && problem->ok() ? &*problem : nullptr;
     if(!border_wants_cones<Metric, Solver>(index, metric, packing, is_singular, options, linearized, first_step))
       return Status::success();
+    progress("cones", cones_stage_share * rounds_start);
   }
   const std::vector<int> seeds = cone_seeds<Solver>(index, packing, is_singular, options);
-  const Cone_options cones = with_newton(options.cones, options.newton);
+  Cone_options cones = with_newton(options.cones, options.newton);
+  double reported = rounds_start; // a fallback's rounds do not go back on what the first said
+  cones.progress = [&](double done) {
+    if(options.cones.progress)
+      options.cones.progress(done);
+    reported = std::max(reported, rounds_start + (1 - rounds_start) * done);
+    progress("cones", cones_stage_share * reported);
+  };
   Cone_selection selection = greedy_cones_in<Solver>(index, metric, problem, seeds, cones);
   if(!selection.ok() && options.fall_back_to_circle_packing)
     selection = greedy_cones<Solver>(index, packing, seeds, cones);
@@ -370,7 +385,7 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   Eigen::VectorXd first_step;
   if(options.automatic_cones && options.cones.max_cones > 0 && user_seams.empty())
     if(const Status status =
-         place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature, first_step);
+         place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature, first_step, progress);
        !status.ok())
       return status;
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() > 0 &&
@@ -378,7 +393,7 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
     return Status::wrong_parameter("a closed genus-0 surface needs at least two cones (automatic cones are off)");
   report.seconds_cones += seconds_since(t);
 
-  progress("cut", 0.35);
+  progress("cut", cones_stage_share);
   t = Clock::now();
   Chart_problem problem = singular_set_problem(index, is_singular, prescribed);
   problem.first_step = std::move(first_step);
@@ -468,20 +483,6 @@ void component_cones_and_seams(
       get(is_user_seam, edge(halfedge(vertices[index.edges[e][0]], vertices[index.edges[e][1]], mesh).first, mesh));
   if(std::find(component_seams.begin(), component_seams.end(), 1) == component_seams.end())
     component_seams.clear();
-}
-
-/// Each chart at its 3D scale: UV area = 3D area (normalised units).
-inline void scale_to_3d_area(const Mesh_index& disk, std::vector<Uv>& uv)
-{
-  double uv_area = 0, area = 0;
-  for(const auto& f : disk.faces)
-  {
-    uv_area += 0.5 * twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]);
-    area += triangle_area(disk.points[f[0]], disk.points[f[1]], disk.points[f[2]]);
-  }
-  const double scale = std::sqrt(area / uv_area);
-  for(Uv& p : uv)
-    p = {p[0] * scale, p[1] * scale};
 }
 
 /// The connected pieces of a cut disk (the overlap removal's pieces share no wedge): the

@@ -339,6 +339,24 @@ inline int count_flipped_faces(const internal::Mesh_index& index, const std::vec
   return flipped;
 }
 
+/// The layout `uv` of `index` scaled about the origin to its 3D scale: UV area = 3D area (in
+/// the index's normalised units). A conformal map keeps shapes, not sizes: this is the size
+/// at which a texel covers the same 3D area on every chart.
+inline void scale_to_3d_area(const internal::Mesh_index& index, std::vector<Uv>& uv)
+{
+  double uv_area = 0, area = 0;
+  for(const auto& f : index.faces)
+  {
+    uv_area += 0.5 * internal::twice_signed_area(uv[f[0]], uv[f[1]], uv[f[2]]);
+    area += internal::triangle_area(index.points[f[0]], index.points[f[1]], index.points[f[2]]);
+  }
+  if(!(uv_area > 0 && area > 0 && std::isfinite(uv_area)))
+    return; // a layout folded over itself, left as it is for its checks to tell
+  const double scale = std::sqrt(area / uv_area);
+  for(Uv& p : uv)
+    p = {p[0] * scale, p[1] * scale};
+}
+
 inline Layout_check check_layout(const internal::Mesh_index& index, const std::vector<double>& lengths,
                                  const std::vector<Uv>& uv)
 {

@@ -454,13 +454,20 @@ Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, c
   return Status::success();
 }
 
-/// What a prescribed border asks of the finished layout: a circle border's deviation from
-/// its circles; a rectangle's sides made exactly straight, the faces held on one side (segments
-/// in any layout) counted apart rather than as flipped.
+/// What a prescribed border asks of the finished layout: its 3D scale; a circle border's
+/// deviation from its circles; a rectangle's sides made exactly straight, the faces held on one
+/// side (segments in any layout) counted apart rather than as flipped.
 inline void finish_prescribed_border(const Chart_problem& problem, std::vector<Uv>& uv, Chart_solve_report& report)
 {
   const Mesh_index& index = *problem.mesh;
   const Border_target& border = *problem.border;
+  // The border's shape is prescribed, its size is not: the vertex pinned for the scale keeps
+  // u0 wherever it falls, which left a circle's disk hundreds of times the 3D area. Scaled to
+  // the 3D area, as every chart of `parameterize` is. A uniform scale keeps equal coordinates
+  // equal, so the rectangle's sides stay exactly straight. No CGAL semantics are lost: CGAL's
+  // border parameterizers put the border on [0, 1]^2, but this map only takes their angles and
+  // was never there.
+  scale_to_3d_area(index, uv);
   if(border.kind == Border_kind::Circles)
     report.circle_deviation = max_circle_deviation(index, uv);
   if(border.kind != Border_kind::Prescribed_curvature)
