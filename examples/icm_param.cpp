@@ -121,7 +121,8 @@ const char* const help_footer =
   "the charts side by side; with --atlas SIZE they are in [0,1]^2 instead, all charts at one scale.\n"
   "\n"
   "Example:\n"
-  "  icm_param examples/data/three_peaks.off -o three_peaks_uv.obj --svg three_peaks_uv.svg --json\n";
+  "  icm_param examples/data/three_peaks.off -o three_peaks_uv.obj --png three_peaks_uv.png \\\n"
+  "    --preview three_peaks_preview.png --json\n";
 
 std::string version_text()
 {
