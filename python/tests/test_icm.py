@@ -247,3 +247,24 @@ def test_energies_same_as_icm_param(energy, tmp_path):
     if energy != "entropy":
         assert got["energy_iterations"] == expected["energy_iterations"]
         assert got["final_energy"] == pytest.approx(expected["final_energy"], rel=1e-9)
+
+
+def test_repairs_keep_the_rows_of_V_and_F(sphere):
+    """A vertex in no face is dropped and a face against its neighbours reoriented, as a file's
+    would be; uv, fuv and seams still index V and F as given."""
+    V, F = sphere
+    V2 = np.vstack([[[5.0, 5.0, 5.0]], V])  # row 0 in no face
+    F2 = F + 1
+    F2[7] = F2[7, ::-1]  # one face reversed
+    result = icm.parameterize(V2, F2)
+    assert result.report["isolated_vertices_dropped"] == 1 and result.report["faces_reoriented"] == 1
+    assert len(result.report["repairs"]) == 2
+    assert result.fuv.shape == F2.shape
+    assert result.seams.min() >= 1 and result.seams.max() < len(V2)
+    area_uv = _triangle_areas_uv(result.uv, result.fuv)
+    # fuv follows F2's corners: the reversed face is the one face with a negative UV area.
+    assert (area_uv < 0).nonzero()[0].tolist() == [7]
+    reference = icm.parameterize(V, F)
+    assert result.report["log_area_distortion"] == pytest.approx(reference.report["log_area_distortion"], rel=1e-9)
+    with pytest.raises(icm.Error, match="vertex 0 is in no face"):
+        icm.parameterize(V2, F2, cone=[(0, 90.0)])
