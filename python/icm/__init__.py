@@ -1,0 +1,27 @@
+"""ICM: conformal parameterization of triangle meshes by the inverse curvature map.
+
+The functions are those of the compiled module ``_icm`` (python/icm_module.cpp); see
+doc/python.md and the docstring of each.
+"""
+
+from ._icm import (
+    ENERGIES,
+    HAS_GLTF,
+    Error,
+    Parameterization,
+    measure_distortion,
+    parameterize,
+    read_mesh,
+    write_mesh,
+)
+
+__all__ = [
+    "ENERGIES",
+    "HAS_GLTF",
+    "Error",
+    "Parameterization",
+    "measure_distortion",
+    "parameterize",
+    "read_mesh",
+    "write_mesh",
+]
