@@ -669,10 +669,9 @@ struct Run_figures
   /// `ICM::parameterize`'s run of `energy_` with `seam_edges` cut (the energy over the
   /// components: `ICM::energy_summary`).
   Run_figures(const ICM::Surface_parameterization_report& report, std::size_t seam_edges_, const std::string& energy_)
-    : charts(0), components(static_cast<int>(report.charts.size())), overlaps(0), raw_overlaps(0),
-      seam_edges(seam_edges_), seconds_index(report.seconds_index), seconds_cones(report.seconds_cones),
-      seconds_optimum(report.seconds_optimum), seconds_cut(report.seconds_cut), seconds_layout(report.seconds_layout),
-      seconds_parameterize(report.seconds_total), energy(energy_),
+    : components(static_cast<int>(report.charts.size())), seam_edges(seam_edges_), seconds_index(report.seconds_index),
+      seconds_cones(report.seconds_cones), seconds_optimum(report.seconds_optimum), seconds_cut(report.seconds_cut),
+      seconds_layout(report.seconds_layout), seconds_parameterize(report.seconds_total), energy(energy_),
       optimized_energy(energy_ != ICM::Curvature_entropy::name)
   {
     if(optimized_energy)
@@ -683,28 +682,22 @@ struct Run_figures
       final_energy = summary.final_energy;
       energy_message = summary.message;
     }
-    for(const ICM::Chart_report& c : report.charts)
-    {
-      cones += static_cast<int>(c.cones.size());
-      wide_cones += static_cast<int>(
-        std::count_if(c.cone_curvatures.begin(), c.cone_curvatures.end(), [](double k) { return k < 0; }));
-      genus += c.genus;
-      loops += c.boundary_loops;
-      newton = std::max(newton, c.newton_iterations);
-      *overlaps += c.overlapping_border_edges;
-      *raw_overlaps += c.raw_overlapping_border_edges;
-      charts += c.pieces;
-      moved += c.moved_vertices;
-      curvature_error = std::max(curvature_error, c.max_curvature_error);
-      length_error = std::max(length_error, c.max_layout_length_error);
-      seam_error = std::max(seam_error, c.seam_length_error);
-      if(metrics.find(c.metric) == std::string::npos)
-        metrics += (metrics.empty() ? "" : ",") + c.metric;
-      if(layout.find(c.layout) == std::string::npos)
-        layout += (layout.empty() ? "" : ",") + c.layout;
-      if(!c.fallback_reason.empty() && fallbacks.empty())
-        fallbacks = c.fallback_reason;
-    }
+    const ICM::Surface_summary s = ICM::surface_summary(report);
+    charts = s.charts;
+    cones = s.cones;
+    wide_cones = s.wide_cones;
+    genus = s.genus;
+    loops = s.boundary_loops;
+    newton = s.newton_iterations;
+    moved = s.moved_vertices;
+    overlaps = s.overlapping_border_edges;
+    raw_overlaps = s.raw_overlapping_border_edges;
+    curvature_error = s.max_curvature_error;
+    length_error = s.max_layout_length_error;
+    seam_error = s.seam_length_error;
+    metrics = s.metrics;
+    layout = s.layouts;
+    fallbacks = s.fallback_reason;
   }
 
   /// `Inverse_curvature_map_parameterizer_3`'s run (a prescribed border): one chart, never cut.
@@ -916,21 +909,6 @@ std::string why_an_overlap_is_refused(const Arguments& args, const ICM::Paramete
          "is); --keep-overlaps writes it anyway";
 }
 
-/// The 3D length of `seams` over the square root of the mesh's 3D area (scale-free).
-double seam_length_over_root_area(const Mesh& mesh, const std::vector<Mesh::Edge_index>& seams)
-{
-  double length = 0, area = 0;
-  for(Mesh::Edge_index e : seams)
-    length += std::sqrt(CGAL::squared_distance(mesh.point(source(e, mesh)), mesh.point(target(e, mesh))));
-  for(Mesh::Face_index f : faces(mesh))
-  {
-    const Mesh::Halfedge_index h = halfedge(f, mesh);
-    area += std::sqrt(CGAL::squared_area(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)),
-                                         mesh.point(target(next(h, mesh), mesh))));
-  }
-  return area > 0 ? length / std::sqrt(area) : 0.0;
-}
-
 /// Any energy on any surface, by `ICM::parameterize` (cones and seams where needed): the
 /// figures of its run into `figures`, or the reason it failed. The entropy's runs are
 /// instantiated here, the other energies' each in its own file (icm_param_energy.h).
@@ -986,7 +964,7 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
   figures->atlas_charts = report.atlas_charts;
   figures->atlas_rotated_charts = report.atlas_rotated_charts;
   figures->atlas_utilization = report.atlas_utilization;
-  figures->seam_length = seam_length_over_root_area(mesh, seams);
+  figures->seam_length = ICM::seam_length_over_root_area(mesh, seams);
   return {};
 }
 

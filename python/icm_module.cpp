@@ -222,75 +222,34 @@ struct Parameterization
   py::dict report;
 };
 
-/// The 3D length of `seams` over the square root of the mesh's 3D area, as icm_param's
-/// `seam_length`.
-double seam_length_over_root_area(const Mesh& mesh, const std::vector<Mesh::Edge_index>& seams)
-{
-  double length = 0, area = 0;
-  for(Mesh::Edge_index e : seams)
-    length += std::sqrt(CGAL::squared_distance(mesh.point(source(e, mesh)), mesh.point(target(e, mesh))));
-  for(Mesh::Face_index f : faces(mesh))
-  {
-    const Mesh::Halfedge_index h = halfedge(f, mesh);
-    area += std::sqrt(CGAL::squared_area(mesh.point(source(h, mesh)), mesh.point(target(h, mesh)),
-                                         mesh.point(target(next(h, mesh), mesh))));
-  }
-  return area > 0 ? length / std::sqrt(area) : 0.0;
-}
-
 /// The run's figures under the keys of icm_param's JSON line (doc/cli.md), summed over the
 /// charts as icm_param sums them.
 py::dict report_dict(const Mesh& mesh, const ICM::Surface_parameterization_report& r, const std::string& energy,
                      const std::optional<ICM::Atlas_options>& atlas, const std::vector<Mesh::Edge_index>& seams,
                      const ICM::IO::Mesh_reading_report& read, const ICM::Distortion_measures& m)
 {
-  int charts = 0, cones = 0, wide_cones = 0, genus = 0, loops = 0, newton = 0, moved = 0, overlaps = 0,
-      raw_overlaps = 0;
-  double curvature_error = 0, length_error = 0, seam_error = 0;
-  std::string metrics, layouts, fallback;
-  for(const ICM::Chart_report& c : r.charts)
-  {
-    charts += c.pieces;
-    cones += static_cast<int>(c.cones.size());
-    wide_cones += static_cast<int>(
-      std::count_if(c.cone_curvatures.begin(), c.cone_curvatures.end(), [](double k) { return k < 0; }));
-    genus += c.genus;
-    loops += c.boundary_loops;
-    newton = std::max(newton, c.newton_iterations);
-    moved += c.moved_vertices;
-    overlaps += c.overlapping_border_edges;
-    raw_overlaps += c.raw_overlapping_border_edges;
-    curvature_error = std::max(curvature_error, c.max_curvature_error);
-    length_error = std::max(length_error, c.max_layout_length_error);
-    seam_error = std::max(seam_error, c.seam_length_error);
-    if(metrics.find(c.metric) == std::string::npos)
-      metrics += (metrics.empty() ? "" : ",") + c.metric;
-    if(layouts.find(c.layout) == std::string::npos)
-      layouts += (layouts.empty() ? "" : ",") + c.layout;
-    if(fallback.empty())
-      fallback = c.fallback_reason;
-  }
+  const ICM::Surface_summary s = ICM::surface_summary(r);
   py::dict d;
   d["vertices"] = num_vertices(mesh);
   d["faces"] = num_faces(mesh);
-  d["charts"] = charts;
+  d["charts"] = s.charts;
   d["components"] = r.charts.size();
-  d["boundary_loops"] = loops;
-  d["genus"] = genus;
-  d["cones"] = cones;
-  d["cones_above_full_turn"] = wide_cones;
+  d["boundary_loops"] = s.boundary_loops;
+  d["genus"] = s.genus;
+  d["cones"] = s.cones;
+  d["cones_above_full_turn"] = s.wide_cones;
   d["seam_edges"] = seams.size();
-  d["seam_length"] = seam_length_over_root_area(mesh, seams);
-  d["layout"] = layouts;
-  d["newton_iterations"] = newton;
-  d["max_curvature_error"] = curvature_error;
-  d["max_layout_length_error"] = length_error;
-  d["seam_length_error"] = seam_error;
-  d["overlapping_border_edges"] = overlaps;
-  d["raw_overlapping_border_edges"] = raw_overlaps;
-  d["moved_vertices"] = moved;
-  d["metric"] = metrics;
-  d["metric_fallback"] = fallback;
+  d["seam_length"] = ICM::seam_length_over_root_area(mesh, seams);
+  d["layout"] = s.layouts;
+  d["newton_iterations"] = s.newton_iterations;
+  d["max_curvature_error"] = s.max_curvature_error;
+  d["max_layout_length_error"] = s.max_layout_length_error;
+  d["seam_length_error"] = s.seam_length_error;
+  d["overlapping_border_edges"] = s.overlapping_border_edges;
+  d["raw_overlapping_border_edges"] = s.raw_overlapping_border_edges;
+  d["moved_vertices"] = s.moved_vertices;
+  d["metric"] = s.metrics;
+  d["metric_fallback"] = s.fallback_reason;
   d["energy"] = energy;
   if(energy != ICM::Curvature_entropy::name)
   {

@@ -598,4 +598,21 @@ TEST(DistortionFrontEnds, NefertitiProjectionAgreesAcrossFrontEnds)
     reference);
 }
 
+TEST(SeamLength, IsTheSeamsLengthOverTheRootOfTheArea)
+{
+  // A 2 x 2 square of two triangles (area 4) cut along its diagonal (length 2 sqrt 2): sqrt 2,
+  // whatever the scale; no seam, 0.
+  for(double scale : {1., 1e-6, 1e6})
+  {
+    Surface_mesh mesh;
+    const auto a = mesh.add_vertex(Point_3(0, 0, 0)), b = mesh.add_vertex(Point_3(2 * scale, 0, 0));
+    const auto c = mesh.add_vertex(Point_3(2 * scale, 2 * scale, 0)), d = mesh.add_vertex(Point_3(0, 2 * scale, 0));
+    mesh.add_face(a, b, c);
+    mesh.add_face(a, c, d);
+    const std::vector<Surface_mesh::Edge_index> diagonal = {mesh.edge(mesh.halfedge(a, c))};
+    EXPECT_NEAR(ICM::seam_length_over_root_area(mesh, diagonal), std::sqrt(2.), 1e-12) << scale;
+    EXPECT_EQ(ICM::seam_length_over_root_area(mesh, std::vector<Surface_mesh::Edge_index>()), 0.);
+  }
+}
+
 } // namespace

@@ -14,6 +14,7 @@
 
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -163,6 +164,48 @@ inline Energy_summary energy_summary(const Surface_parameterization_report& repo
       summary.message = c.energy_message;
   }
   return summary;
+}
+
+/// The components of a report taken together, as the command-line tool and the Python
+/// module report them: counts summed (charts are the pieces the components were cut into,
+/// wide cones those of angle above 2 pi), the largest Newton run and errors, each metric and
+/// layout named once, and the first reason of a fallback.
+struct Surface_summary
+{
+  int charts = 0, cones = 0, wide_cones = 0, genus = 0, boundary_loops = 0, newton_iterations = 0, moved_vertices = 0,
+      overlapping_border_edges = 0, raw_overlapping_border_edges = 0;
+  double max_curvature_error = 0, max_layout_length_error = 0, seam_length_error = 0;
+  std::string metrics, layouts, fallback_reason;
+};
+
+inline Surface_summary surface_summary(const Surface_parameterization_report& report)
+{
+  const auto add_once = [](std::string& list, const std::string& name) {
+    if(list.find(name) == std::string::npos)
+      list += (list.empty() ? "" : ",") + name;
+  };
+  Surface_summary s;
+  for(const Chart_report& c : report.charts)
+  {
+    s.charts += c.pieces;
+    s.cones += static_cast<int>(c.cones.size());
+    for(double k : c.cone_curvatures)
+      s.wide_cones += k < 0;
+    s.genus += c.genus;
+    s.boundary_loops += c.boundary_loops;
+    s.newton_iterations = std::max(s.newton_iterations, c.newton_iterations);
+    s.moved_vertices += c.moved_vertices;
+    s.overlapping_border_edges += c.overlapping_border_edges;
+    s.raw_overlapping_border_edges += c.raw_overlapping_border_edges;
+    s.max_curvature_error = std::max(s.max_curvature_error, c.max_curvature_error);
+    s.max_layout_length_error = std::max(s.max_layout_length_error, c.max_layout_length_error);
+    s.seam_length_error = std::max(s.seam_length_error, c.seam_length_error);
+    add_once(s.metrics, c.metric);
+    add_once(s.layouts, c.layout);
+    if(s.fallback_reason.empty())
+      s.fallback_reason = c.fallback_reason;
+  }
+  return s;
 }
 
 } // namespace ICM

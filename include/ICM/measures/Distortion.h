@@ -422,6 +422,37 @@ Distortion_measures measure_distortion_corner_uv(const TriangleMesh& mesh, Halfe
   return measure_distortion_corner_uv(mesh, halfedge_uv_map, get(CGAL::vertex_point, mesh));
 }
 
+/// The total 3D length of the edges `seams` over the square root of the mesh's 3D area: the
+/// length of a cut free of the mesh's scale, 0 without a seam (`seam_length` in icm_param's
+/// JSON and in the Python module's report; `Chart_report::seam_length` per component).
+template <class TriangleMesh, class EdgeRange>
+double seam_length_over_root_area(const TriangleMesh& mesh, const EdgeRange& seams)
+{
+  const auto vpm = get(CGAL::vertex_point, mesh);
+  const auto point = [&](auto v) {
+    const auto& p = get(vpm, v);
+    return std::array<double, 3>{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+  };
+  const auto minus = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  };
+  double length = 0, area = 0;
+  for(const auto& e : seams)
+  {
+    const std::array<double, 3> d = minus(point(target(e, mesh)), point(source(e, mesh)));
+    length += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  }
+  for(auto f : faces(mesh))
+  {
+    const auto h = halfedge(f, mesh);
+    const std::array<double, 3> a = point(source(h, mesh));
+    const std::array<double, 3> u = minus(point(target(h, mesh)), a), w = minus(point(target(next(h, mesh), mesh)), a);
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  return area > 0 ? length / std::sqrt(area) : 0.0;
+}
+
 namespace internal {
 namespace distortion {
 
