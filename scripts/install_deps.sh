@@ -9,7 +9,7 @@ set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
           libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtinygltf-dev doxygen python3
           clang-format libopenblas0-pthread libstb-dev
-          pybind11-dev python3-pybind11 python3-numpy python3-pytest)
+          pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
