@@ -203,6 +203,21 @@ pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out
   ::_exit(127);
 }
 
+/// " (SIGSEGV)": the name of a signal a crash ends with, as icm.batch writes it, or empty.
+std::string signal_name(int signal)
+{
+  for(const auto& [number, name] : {std::pair<int, const char*>{SIGSEGV, "SIGSEGV"},
+                                    {SIGABRT, "SIGABRT"},
+                                    {SIGBUS, "SIGBUS"},
+                                    {SIGFPE, "SIGFPE"},
+                                    {SIGILL, "SIGILL"},
+                                    {SIGKILL, "SIGKILL"},
+                                    {SIGTERM, "SIGTERM"}})
+    if(signal == number)
+      return std::string(" (") + name + ")";
+  return {};
+}
+
 /// Why a child that ended with `status` failed, or empty when it wrote its outputs; its
 /// figures (the --json line) in `figures`.
 std::string failure_of(const Child& child, int status, const Batch_options& options, Json& figures)
@@ -217,7 +232,7 @@ std::string failure_of(const Child& child, int status, const Batch_options& opti
   const Json line = Json::parse(last_line(out), nullptr, false);
   std::string reason;
   if(WIFSIGNALED(status))
-    reason = "crashed: signal " + std::to_string(WTERMSIG(status)) + " (" + ::strsignal(WTERMSIG(status)) + ")";
+    reason = "crashed: signal " + std::to_string(WTERMSIG(status)) + signal_name(WTERMSIG(status));
   else if(WIFEXITED(status) && WEXITSTATUS(status) == 0)
   {
     if(line.is_object() && !line.contains("error"))
