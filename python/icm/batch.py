@@ -50,8 +50,7 @@ class Job:
 
     input: str  # the path as given: the row's "input"
     output: str  # OUTDIR/STEM.FORMAT with OUTDIR as given: the row's "output"
-    input_path: str  # absolute: a worker's working directory is not ours
-    output_path: str
+    directory: str  # the batch's working directory, where `input` and `output` are
     parameters: tuple  # the child's options: --cones, --energy, --atlas, --padding, --max-memory
     timeout: float  # seconds, 0 for none
     max_memory: float  # megabytes, 0 for none
@@ -221,8 +220,8 @@ def make_jobs(args, inputs):
     jobs = []
     for input in inputs:
         output = output_path(args.output_dir, input, args.format)
-        jobs.append(Job(input, output, os.path.abspath(input), os.path.abspath(output), parameters,
-                        args.timeout or 0.0, args.max_memory or 0.0, environment))
+        jobs.append(Job(input, output, os.getcwd(), parameters, args.timeout or 0.0, args.max_memory or 0.0,
+                        environment))
     return jobs
 
 
@@ -368,15 +367,26 @@ def make_row(job, reason, seconds, figures):
     return row
 
 
+def _paths_here(job):
+    """(working directory, input, output) of the child on this machine: the batch's directory
+    and the paths as given, so that the messages name the input as icm_param's do; absolute
+    paths on a worker that has no such directory (a cluster whose workers share the files but
+    not the batch's working directory)."""
+    if os.path.isdir(job.directory):
+        return job.directory, job.input, job.output
+    return None, os.path.join(job.directory, job.input), os.path.join(job.directory, job.output)
+
+
 def run_job(job):
     """Runs one mesh in a child process and returns its row; the task of a Dask worker. The
     child is killed when it runs past the job's timeout."""
-    command = [sys.executable, "-m", "icm.batch", "--one", job.input_path, job.output_path, *job.parameters]
+    directory, input, output = _paths_here(job)
+    command = [sys.executable, "-m", "icm.batch", "--one", input, output, *job.parameters]
     environment = dict(os.environ, **dict(job.environment))
     start = time.monotonic()
     try:
         done = subprocess.run(command, stdin=subprocess.DEVNULL, capture_output=True, text=True, errors="replace",
-                              env=environment, timeout=job.timeout or None)
+                              cwd=directory, env=environment, timeout=job.timeout or None)
     except subprocess.TimeoutExpired:  # subprocess.run killed it (SIGKILL) and waited
         return make_row(job, f"timed out after {job.timeout:g} s", time.monotonic() - start, None)
     except OSError as error:
@@ -400,7 +410,7 @@ def _largest_first(jobs):
 
     def size(item):
         try:
-            return os.path.getsize(item[1].input_path)
+            return os.path.getsize(os.path.join(item[1].directory, item[1].input))
         except OSError:
             return 0
 
@@ -512,9 +522,10 @@ def seconds_text(seconds):
     return f"{seconds:.{2 if seconds < 10 else 1}f} s"
 
 
-def progress_line(done, to_run, row, elapsed):
-    """The line of a finished mesh: the count, its outcome, the time so far and the time left
-    at the pace so far."""
+def progress_line(done, to_run, row, elapsed, running):
+    """The line of a finished mesh: the count, its outcome, the time so far (`elapsed`) and the
+    time left at the pace of the meshes so far (`running`: since they began, after the
+    cluster's start)."""
     name = os.path.basename(row["input"])
     if row["status"] == "ok":
         text = f"[{done}/{to_run}] ok {name} ({seconds_text(row['seconds'])})"
@@ -522,7 +533,7 @@ def progress_line(done, to_run, row, elapsed):
         text = f"[{done}/{to_run}] failed {name}: {row['error']}"
     text += f", elapsed {duration_text(elapsed)}"
     if done < to_run:
-        text += f", ETA {duration_text(elapsed / done * (to_run - done))}"
+        text += f", ETA {duration_text(running / done * (to_run - done))}"
     return PREFIX + text
 
 
@@ -555,14 +566,15 @@ def run_batch(args, jobs, start):
             results = dask_rows(client, to_run)
         # Appended and flushed as they come, so that a killed batch keeps them (--resume).
         journal = stack.enter_context(open(summary, "a" if args.resume else "w", encoding="utf-8"))
-        failed = 0
+        failed, started = 0, time.monotonic()
         for done, (index, row) in enumerate(results, start=1):
             rows[index] = row
             journal.write(_dump(row) + "\n")
             journal.flush()
             failed += row["status"] != "ok"
             if not args.quiet:
-                print(progress_line(done, len(to_run), row, time.monotonic() - start), file=sys.stderr, flush=True)
+                now = time.monotonic()
+                print(progress_line(done, len(to_run), row, now - start, now - started), file=sys.stderr, flush=True)
 
     write_summary(summary, [row for row in rows if row is not None])
     if not args.quiet or failed:
