@@ -9,6 +9,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -262,3 +263,39 @@ def test_crash_hook_is_inert_without_the_variable(work):
                          cwd=directory, capture_output=True, text=True, timeout=300, env=environment)
     assert run.returncode == 0, run.stderr
     assert summary(directory / "hook_out")[0]["status"] == "ok"
+
+
+@pytest.fixture
+def scheduler(tmp_path):
+    """A Dask cluster as the deployment tools make one: `dask scheduler` and a `dask worker`
+    (one process, one thread) joined to it; its address."""
+    scheduler_file = tmp_path / "scheduler.json"
+    common = ["--scheduler-file", str(scheduler_file), "--no-dashboard"]
+    processes = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                                   "--port", "0", *common], cwd=tmp_path, stderr=subprocess.DEVNULL)]
+    try:
+        for _ in range(600):  # the scheduler writes its address once it listens
+            if scheduler_file.exists() and scheduler_file.stat().st_size > 0:
+                break
+            time.sleep(0.05)
+        address = json.loads(scheduler_file.read_text())["address"]
+        processes.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", "--nthreads", "1",
+                                           *common], cwd=tmp_path, stderr=subprocess.DEVNULL))
+        yield address
+    finally:
+        for process in processes:
+            process.terminate()
+            process.wait(timeout=60)
+
+
+def test_existing_cluster(work, scheduler, serial_run):
+    """--scheduler ADDRESS: the meshes run on that cluster's worker, the rows are the serial
+    run's, a crash there is recorded too."""
+    directory, inputs = work
+    chosen = [inputs[0], "crash.off", "truncated.off"]
+    run = batch(*chosen, "-O", "cluster_out", "--scheduler", scheduler, cwd=directory, environment=CRASH)
+    assert run.returncode == 1, run.stderr
+    serial_rows = {row["input"]: row for row in serial_run[1]}
+    for row in summary(directory / "cluster_out"):
+        expected = dict(without_seconds(serial_rows[row["input"]]), output=row["output"])
+        assert without_seconds(row) == expected
