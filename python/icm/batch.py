@@ -459,8 +459,8 @@ def check_dask():
 
         return distributed
     except ImportError as error:
-        raise UsageError(f"--workers and --scheduler need Dask's package distributed ({error}); "
-                         "install it (Debian: python3-distributed), or run with --serial") from None
+        raise UsageError(f"a batch on Dask (--workers N, the default, or --scheduler) needs the package "
+                         f"distributed ({error}): install it (Debian: python3-distributed), or run with --serial") from None
 
 
 # --- the summary -----------------------------------------------------------------------
@@ -583,12 +583,9 @@ def run_batch(args, jobs, start):
     return 1 if failed else 0
 
 
-def main(argv=None):
-    """The command line; returns the exit status."""
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["--one"]:
-        return run_child(argv[1:])
-    start = time.monotonic()
+def parse(argv):
+    """(the options, the inputs) of a batch's command line; SystemExit(2) after the usage and
+    the reason on a usage error (SystemExit(0) after --help)."""
     parser = make_parser()
     args = parser.parse_args(argv)
     try:
@@ -599,6 +596,20 @@ def main(argv=None):
         make_output_dir(args.output_dir)
     except UsageError as error:
         parser.error(str(error))
+    return args, inputs
+
+
+def main(argv=None):
+    """The command line (`argv`, sys.argv[1:] by default); returns the exit status, also on a
+    usage error, so that a program that made its own cluster can run a batch on it."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["--one"]:
+        return run_child(argv[1:])
+    start = time.monotonic()
+    try:
+        args, inputs = parse(argv)
+    except SystemExit as exit:
+        return exit.code
     try:
         return run_batch(args, make_jobs(args, inputs), start)
     except OSError as error:  # the summary cannot be written, a scheduler cannot be reached
