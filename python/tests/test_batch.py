@@ -14,7 +14,7 @@ import time
 import pytest
 
 import icm
-from conftest import ICM_PARAM, MESHES
+from conftest import DATA, ICM_PARAM, MESHES
 
 # The broken inputs, each with what its row's error must say.
 BROKEN = {
@@ -46,13 +46,13 @@ def without_seconds(row):
 def write_broken_files(directory):
     """The broken inputs of BROKEN, and repaired.off: a grid with a face reversed and a vertex in
     no face, which read_mesh repairs."""
-    with open(MESHES[0].parent / "three_peaks.off", encoding="utf-8") as mesh:
+    with open(DATA / "three_peaks.off", encoding="utf-8") as mesh:
         lines = mesh.read().splitlines(keepends=True)
     (directory / "truncated.off").write_text("".join(lines[:3000]))  # 1091 of the 3671 faces
     (directory / "nonmanifold.off").write_text(  # three triangles on the edge 0-1
         "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n")
     (directory / "infinite.off").write_text("OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\ninf 1 0\n3 0 1 2\n3 1 3 2\n")
-    shutil.copy(MESHES[0].parent / "pig.off", directory / "crash.off")  # good, but the hook crashes it
+    shutil.copy(DATA / "pig.off", directory / "crash.off")  # good, but the hook crashes it
     n = 5
     vertices = [(i, j, 0.1 * (i * j % 3)) for j in range(n) for i in range(n)] + [(9, 9, 9)]
     faces = []
@@ -172,7 +172,7 @@ def test_resume(work):
     """--resume skips an ok input whose output exists (its row kept as it was), runs the others
     again, ignores a row a killed batch cut short; without --resume the summary is replaced."""
     directory, _ = work
-    inputs = [str(MESHES[0].parent / "three_peaks.off"), str(MESHES[0].parent / "eight.off"), "truncated.off"]
+    inputs = [str(DATA / "three_peaks.off"), str(DATA / "eight.off"), "truncated.off"]
     assert batch(*inputs, "-O", "resume_out", "--serial", cwd=directory).returncode == 1
     first = summary(directory / "resume_out")
     kept = directory / first[0]["output"]
@@ -200,7 +200,7 @@ def test_timeout_and_memory(work):
     """A mesh past --timeout is killed and recorded as timed out; one past --max-memory as out of
     memory; neither leaves an output."""
     directory, _ = work
-    mesh = str(MESHES[0].parent / "three_peaks.off")
+    mesh = str(DATA / "three_peaks.off")
     run = batch(mesh, "-O", "timeout_out", "--serial", "--timeout", 0.001, cwd=directory)
     assert run.returncode == 1
     row, = summary(directory / "timeout_out")
@@ -218,7 +218,7 @@ def test_options_reach_the_child(work):
     """--energy, --cones, --atlas, --padding and --format: the row is parameterize's with the
     same options, the file a PLY."""
     directory, _ = work
-    mesh = MESHES[0].parent / "sphere966.off"
+    mesh = DATA / "sphere966.off"
     run = batch(mesh, "-O", "options_out", "--serial", "--quiet", "--energy", "area", "--cones", 6, "--atlas", 256,
                 "--padding", 2, "--format", "ply", cwd=directory)
     assert run.returncode == 0 and run.stderr == ""
