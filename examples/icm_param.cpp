@@ -35,6 +35,7 @@
 #include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/parameterize.h>
 
+#include "icm_param_batch.h"
 #include "icm_param_energy.h"
 
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -50,6 +51,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -96,6 +98,10 @@ struct Arguments
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
   /// --atlas SIZE [--padding TEXELS] [--atlas-packer NAME]: unset, UVs in the mesh's units.
   std::optional<ICM::Atlas_options> atlas;
+  /// -O OUTDIR and the other batch options: many inputs, each in a process of its own.
+  icm_param::Batch_options batch;
+  /// --batch-item INPUT (hidden): this process is one mesh of a batch, run by its parent.
+  std::string batch_item;
 };
 
 const char* const usage =
@@ -106,6 +112,8 @@ const char* const usage =
   "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
   "         [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
+  "       icm_param INPUT... [--list FILE] -O OUTDIR [-j JOBS] [--format obj|ply|gltf|glb] [--resume]\n"
+  "         [--timeout SECONDS] [--max-memory MB] [options above but -o and the pictures]\n"
   "       icm_param --help | --version\n";
 
 /// The end of --help: what a script needs besides the options (doc/cli.md says the same).
@@ -114,7 +122,7 @@ const char* const help_footer =
   "  0  the outputs are written (and after --help or --version)\n"
   "  1  the run failed, nothing is written: the input (or the --seams file, or a --cone vertex) cannot be\n"
   "     read or is not a mesh the options can take, the parameterization failed, an output cannot be\n"
-  "     written, or memory ran out\n"
+  "     written, or memory ran out; in a batch (-O), some mesh failed (OUTDIR/summary.jsonl says why)\n"
   "  2  the command line is wrong, nothing is read or written (the reason and the usage go to stderr)\n"
   "\n"
   "Units: the UVs are in the mesh's units, each chart at its 3D scale (its UV area equals its 3D area),\n"
@@ -339,6 +347,84 @@ std::string output_format_conflict(const Arguments& args)
   return {};
 }
 
+/// -O, -j, --list, --format, --resume, --timeout, --max-memory, and the hidden --batch-item
+/// by which a batch runs each mesh (icm_param_batch.h).
+void add_batch_options(CLI::App& app, Arguments& args)
+{
+  icm_param::Batch_options& batch = args.batch;
+  app
+    .add_option("-O,--output-dir", batch.output_dir,
+                "a batch: write each INPUT's output to OUTDIR/NAME.FORMAT (NAME its file name without the extension) "
+                "and a row per input to OUTDIR/summary.jsonl; each mesh runs in a process of its own")
+    ->type_name("OUTDIR");
+  app.add_option("--list", batch.list, "with -O: also the inputs named in FILE, one path a line ('#' comments)")
+    ->type_name("FILE");
+  app.add_option("-j,--jobs", batch.jobs, "with -O: meshes run at once (default 1)")
+    ->check(CLI::Range(1, 1024))
+    ->type_name("JOBS");
+  app.add_option("--format", batch.format, "with -O: the outputs' format (default obj)")
+    ->check(CLI::IsMember({"obj", "ply", "gltf", "glb"}))
+    ->type_name("obj|ply|gltf|glb");
+  app.add_flag("--resume", batch.resume,
+               "with -O: skip the inputs whose row in OUTDIR/summary.jsonl says ok and whose output exists");
+  app.add_option("--timeout", batch.timeout, "with -O: a mesh still running after SECONDS is stopped and fails")
+    ->check(CLI::PositiveNumber)
+    ->type_name("SECONDS");
+  app
+    .add_option("--max-memory", batch.max_memory_mb,
+                "with -O: a mesh may use at most MB megabytes of address space, or it fails")
+    ->check(CLI::PositiveNumber)
+    ->type_name("MB");
+  app.add_option("--batch-item", args.batch_item)->group(""); // hidden: set by the batch for each child
+}
+
+/// One mesh (INPUT -o OUTPUT), a batch (-O), or a batch's child (--batch-item): checks that
+/// the options go with the mode and fills `args.input`, `args.output`. The reason they do
+/// not, or empty.
+std::string choose_mode(Arguments& args)
+{
+  icm_param::Batch_options& batch = args.batch;
+  if(!args.batch_item.empty()) // a child: its parent checked everything else
+  {
+    args.input = args.batch_item;
+    args.output = icm_param::batch_output_path(batch.output_dir, args.input, batch.format);
+    args.json = args.quiet = true;
+    return {};
+  }
+  if(batch.output_dir.empty())
+  {
+    for(const auto& [option, given] : {std::pair<const char*, bool>{"--list", !batch.list.empty()},
+                                       {"-j", batch.jobs != 1},
+                                       {"--resume", batch.resume},
+                                       {"--timeout", batch.timeout > 0},
+                                       {"--max-memory", batch.max_memory_mb > 0}})
+      if(given)
+        return std::string(option) + " needs a batch: -O OUTDIR";
+    if(batch.inputs.empty())
+      return "no input file";
+    if(batch.inputs.size() > 1)
+      return "more than one input file ('" + batch.inputs[1] + "'): -O OUTDIR parameterizes several";
+    if(args.output.empty())
+      return "no output file (-o OUTPUT.obj|.ply|.gltf|.glb)";
+    args.input = batch.inputs.front();
+    return {};
+  }
+  for(const auto& [option, given] : {std::pair<const char*, bool>{"-o", !args.output.empty()},
+                                     {"--svg", !args.svg.empty()},
+                                     {"--png", !args.png.empty()},
+                                     {"--preview", !args.preview.empty()}})
+    if(given)
+      return std::string(option) + " names one file: with -O OUTDIR each input's output is OUTDIR/NAME." +
+             batch.format + " and there are no pictures";
+  std::string error;
+  if(!batch.list.empty() && !icm_param::read_input_list(batch.list, batch.inputs, error))
+    return error;
+  args.output = icm_param::batch_output_path(batch.output_dir, "NAME", batch.format); // for the format checks
+  batch.quiet = args.quiet;
+  batch.json = args.json;
+  return {};
+}
+
 /// Parses the command line into `args`. Returns -1 to go on, else the exit code (0 after
 /// --help or --version, 2 on a usage error, which `fail` has reported).
 int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report& fail)
@@ -354,15 +440,14 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   app.allow_extras(); // unknown options are reported below, by name
   std::string cones_text, atlas_text, padding_text, packer_text;
   std::vector<std::string> cone_texts;
-  app.add_option("input", args.input, "mesh file: .off (and COFF, NOFF, STOFF, 4OFF), .obj, .ply, .stl")
-    ->required()
+  app.add_option("input", args.batch.inputs, "mesh file: .off (and COFF, NOFF, STOFF, 4OFF), .obj, .ply, .stl")
     ->type_name("INPUT");
   app
     .add_option("-o,--output", args.output,
                 "the UV'd mesh to write, in the format its extension names: .obj (v, vt, f), .ply (ASCII, or "
                 "--ply-binary; per-corner texcoord), .gltf or .glb (glTF 2.0, vertices split at seams)")
-    ->required()
     ->type_name("OUTPUT.obj|.ply|.gltf|.glb");
+  add_batch_options(app, args);
   app.add_flag("--ply-binary", args.ply_binary, "write the .ply output in binary little-endian rather than ASCII");
   app.add_option("--svg", args.svg, "also write an SVG of the layout, faces coloured by log area ratio")
     ->type_name("FILE");
@@ -459,18 +544,14 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   {
     return app.exit(e);
   }
-  catch(const CLI::RequiredError&)
-  {
-    return usage_error(args.input.empty() ? "no input file" : "no output file (-o OUTPUT.obj|.ply|.gltf|.glb)", fail);
-  }
   catch(const CLI::ParseError& e)
   {
     return usage_error(e.what(), fail);
   }
   for(const std::string& extra : app.remaining())
-    return usage_error(!extra.empty() && extra[0] == '-' ? "unknown option " + extra
-                                                         : "more than one input file ('" + extra + "')",
-                       fail);
+    return usage_error("unknown option " + extra, fail);
+  if(const std::string mode = choose_mode(args); !mode.empty())
+    return usage_error(mode, fail);
   if(!cones_text.empty() && cones_text != "auto")
     args.max_cones = std::atoi(cones_text.c_str());
   args.cones_asked = (!cones_text.empty() && args.max_cones != 0) || args.cone_target > 0;
@@ -488,6 +569,9 @@ int parse_arguments(int argc, char** argv, Arguments& args, const Failure_report
   const std::string format = output_format_conflict(args);
   if(!format.empty())
     return usage_error(format, fail);
+  if(!args.batch.output_dir.empty() && args.batch_item.empty()) // last: it creates OUTDIR
+    if(const std::string batch = icm_param::check_batch(args.batch); !batch.empty())
+      return usage_error(batch, fail);
   return -1;
 }
 
@@ -1059,10 +1143,19 @@ int main(int argc, char** argv)
   const int parsed = parse_arguments(argc, argv, args, fail);
   if(parsed >= 0)
     return parsed;
+  if(!args.batch.output_dir.empty() && args.batch_item.empty())
+    return icm_param::run_batch(args.batch, argc, argv);
+  fail.json = fail.json || !args.batch_item.empty();
   fail.input = args.input;
   fail.output = args.output;
   try
   {
+    // Test only (test_cli_batch.cpp): a batch item that crashes, as a bug would.
+    if(const char* crash = std::getenv("ICM_PARAM_TEST_CRASH"); crash != nullptr && args.batch_item == crash)
+      std::raise(SIGSEGV);
+    if(!args.batch_item.empty() && args.batch.max_memory_mb > 0)
+      if(std::string error; !icm_param::limit_memory(args.batch.max_memory_mb, error))
+        return fail(error);
     return run(args, fail);
   }
   catch(const std::bad_alloc&)

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "atlas_checks.h"
+#include "cli_sandbox.h"
 #include "test_support.h"
 #include "uv_output_readers.h"
 
@@ -28,77 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 
 using icm_test::data_path;
+using icm_test::lines_of;
+using icm_test::quote;
 using icm_test::read_text;
+using icm_test::Sandbox;
 using icm_test::write_text;
-
-std::vector<std::string> lines_of(const std::string& text)
-{
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for(std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
-}
-
-std::string quote(const std::string& s)
-{
-  std::string out = "'";
-  for(char c : s)
-  {
-    if(c == '\'')
-      out += "'\\''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
-
-/// A fresh directory under GoogleTest's temporary directory: `work` for the tool's outputs,
-/// and the captured streams beside it, so that `work` holds exactly what the tool wrote.
-class Sandbox
-{
-public:
-  Sandbox() : root_("icm_cli") { fs::create_directories(work()); }
-  fs::path work() const { return root_.path() / "work"; }
-  fs::path file(const std::string& name) const { return work() / name; }
-
-  /// Files in `work`, sorted.
-  std::vector<std::string> listing() const
-  {
-    std::vector<std::string> names;
-    for(const auto& entry : fs::directory_iterator(work()))
-      names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-  struct Result
-  {
-    int exit_code = -1;
-    std::string out, err;
-  };
-
-  /// Runs icm_param with `arguments` (already quoted) in `work`.
-  Result run(const std::string& arguments) const
-  {
-    const fs::path out = root_.path() / "stdout.txt", err = root_.path() / "stderr.txt";
-    const std::string command = "cd " + quote(work().string()) + " && " + quote(ICM_PARAM_EXE) + " " + arguments +
-                                " >" + quote(out.string()) + " 2>" + quote(err.string());
-    const int status = std::system(command.c_str());
-    Result r;
-#ifdef _WIN32
-    r.exit_code = status;
-#else
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-#endif
-    r.out = read_text(out);
-    r.err = read_text(err);
-    return r;
-  }
-
-private:
-  icm_test::Scratch_directory root_;
-};
 
 /// Checks a failed run: non-zero exit, nothing on stdout, exactly one line on stderr that
 /// contains `expected` and names the tool, and no file left in the work directory but
