@@ -1,6 +1,8 @@
 """python3 -m icm.batch: a LocalCluster of 2 workers and a serial run over the bundled meshes
-and broken files (truncated, non-manifold, an infinite coordinate, a crash), against each other
-and against icm_param; --resume, --timeout, --max-memory, the options, the usage errors.
+and broken files (truncated, non-manifold, an infinite coordinate, a crash), against each other,
+against icm_param one mesh at a time and against icm_param's own batch (-O); a cluster made by
+`dask scheduler` and `dask worker` (--scheduler); --resume, --timeout, --max-memory, the options,
+the usage errors.
 
 The two big runs are made once (module-scoped fixtures) and checked by several tests."""
 
@@ -166,6 +168,25 @@ def test_rows_match_icm_param(work, dask_run, tmp_path):
         assert {key for key in expected if not key.startswith("seconds")} - skipped <= set(row)
     repaired = next(row for row in dask_run[1] if row["input"] == "repaired.off")
     assert repaired["isolated_vertices_dropped"] == 1 and repaired["faces_reoriented"] == 1
+
+
+def test_rows_match_icm_param_batch(work, serial_run):
+    """icm_param's own batch (-O) on the same inputs: the same rows, key for key but the
+    seconds, the output directory and the keys the Python report lacks, and the same files."""
+    directory, inputs = work
+    run = subprocess.run([ICM_PARAM, *inputs, "-O", "cli_out", "-j", "2", "--quiet"], cwd=directory,
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 1, run.stderr  # the broken files; crash.off is good to icm_param
+    only_icm_param = {"faces_triangulated"}
+    for cli_row, row in zip(summary(directory / "cli_out"), serial_run[1]):
+        assert cli_row["input"] == row["input"]
+        if row["input"] == "crash.off":
+            continue
+        cli_row = {key: value for key, value in without_seconds(cli_row).items() if key not in only_icm_param}
+        assert dict(cli_row, output=row["output"]) == without_seconds(row)
+        if row["status"] == "ok":
+            cli_file = directory / "cli_out" / os.path.basename(row["output"])
+            assert cli_file.read_bytes() == (directory / row["output"]).read_bytes()
 
 
 def test_resume(work):
