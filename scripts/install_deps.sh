@@ -4,7 +4,8 @@
 # (the default solver from 25k vertices) runs: 0.9 s against 2.5 s for the reference BLAS on
 # 533k unknowns (doc/solvers.md). libtinygltf-dev writes the glTF output: Debian builds its
 # implementation (with nlohmann-json and stb) into a shared library, found by CMake. pybind11,
-# numpy and pytest build and test the Python module (doc/python.md) for Debian's /usr/bin/python3.
+# numpy and pytest build and test the Python module (doc/python.md) for Debian's /usr/bin/python3;
+# python3-distributed (Dask) runs its batches on a cluster (doc/batch.md, python/tests/test_batch.py).
 set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
           libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtinygltf-dev doxygen python3
