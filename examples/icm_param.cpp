@@ -1143,13 +1143,13 @@ int main(int argc, char** argv)
   const int parsed = parse_arguments(argc, argv, args, fail);
   if(parsed >= 0)
     return parsed;
-  if(!args.batch.output_dir.empty() && args.batch_item.empty())
-    return icm_param::run_batch(args.batch, argc, argv);
   fail.json = fail.json || !args.batch_item.empty();
   fail.input = args.input;
   fail.output = args.output;
   try
   {
+    if(!args.batch.output_dir.empty() && args.batch_item.empty())
+      return icm_param::run_batch(args.batch, argc, argv);
     // Test only (test_cli_batch.cpp): a batch item that crashes, as a bug would.
     if(const char* crash = std::getenv("ICM_PARAM_TEST_CRASH"); crash != nullptr && args.batch_item == crash)
       std::raise(SIGSEGV);

@@ -102,15 +102,25 @@ std::map<std::string, Json> earlier_rows(const fs::path& summary)
   {
     Json row = Json::parse(line, nullptr, false);
     if(row.is_object() && row.contains("input") && row["input"].is_string())
-      rows[row["input"].get<std::string>()] = std::move(row);
+    {
+      const std::string input = row["input"].get<std::string>();
+      rows[input] = std::move(row);
+    }
   }
   return rows;
+}
+
+/// The string under `key`, or empty: an earlier summary is a file anyone may have edited.
+std::string string_at(const Json& row, const char* key)
+{
+  const auto value = row.find(key);
+  return value != row.end() && value->is_string() ? value->get<std::string>() : std::string();
 }
 
 bool was_done(const Json& row, const std::string& output)
 {
   std::error_code ec;
-  return row.value("status", "") == "ok" && row.value("output", "") == output && fs::is_regular_file(output, ec);
+  return string_at(row, "status") == "ok" && string_at(row, "output") == output && fs::is_regular_file(output, ec);
 }
 
 /// The row of a mesh: what the batch knows, then the child's figures (its --json line).
