@@ -5,8 +5,10 @@ doc/python.md and the docstring of each.
 """
 
 from ._icm import (
+    BOUNDARIES,
     ENERGIES,
     HAS_GLTF,
+    METRICS,
     Error,
     Parameterization,
     measure_distortion,
@@ -16,8 +18,10 @@ from ._icm import (
 )
 
 __all__ = [
+    "BOUNDARIES",
     "ENERGIES",
     "HAS_GLTF",
+    "METRICS",
     "Error",
     "Parameterization",
     "measure_distortion",
