@@ -47,9 +47,10 @@ import icm
 mesh, python_dir = sys.argv[1], sys.argv[2]
 assert icm.__file__.startswith(python_dir), "imported " + icm.__file__ + ", not the installed package"
 V, F, repairs = icm.read_mesh(mesh)
-result = icm.parameterize(V, F, boundary="circle")
-assert result.fuv.shape == F.shape and result.report["flipped_faces"] == 0, result.report
-print(f"icm {icm.__file__}: {result.report['faces']} faces, {result.charts} chart, boundary {result.report['boundary']}")
+for boundary in ("free", "circle"):  # ICM::parameterize, and the disk parameterizer
+    result = icm.parameterize(V, F, boundary=boundary)
+    assert result.fuv.shape == F.shape and result.report["flipped_faces"] == 0, result.report
+    print(f"{icm.__file__}: {result.report['faces']} faces, {result.charts} chart, {boundary} border")
 PYTHON
 fi
 
