@@ -283,9 +283,9 @@ void check_choice(const std::string& what, const std::string& value, const std::
 struct Request
 {
   std::string energy, metric, boundary;
-  /// `cones` is a count > 0 (icm_param's `--cones N`): automatic cones beside the user's
-  /// seams, and refused with a prescribed border. `cones=0` turns them off, which is no
-  /// request, and "auto" is the default, which cannot be told from no request either.
+  /// `cones` is a count > 0 (icm_param's `--cones N`): automatic cones on the components
+  /// without user seams too, and refused with a prescribed border. `cones=0` turns them off,
+  /// which is no request, and "auto" is the default, which cannot be told from none either.
   bool cones_asked = false;
   bool keep_overlaps = false;
   ICM::Surface_parameterization_options options;

@@ -26,7 +26,7 @@ def pytest_configure(config):
     config.addinivalue_line(
         "markers",
         "shared_meshes: icm.parameterize against icm_param on every mesh of the shared data folder "
-        "(ICM_SHARED_DATA); about a minute, deselect with -m 'not shared_meshes'",
+        "(ICM_SHARED_DATA); the largest take seconds each, deselect with -m 'not shared_meshes'",
     )
 
 
