@@ -6,7 +6,8 @@
 //   a prescribed border condition (--boundary), on a disk.
 // Each file (one energy, four metrics) takes about 40 s of CPU at -O3 on a 2-core EPYC,
 // icm_param.cpp 68 s; all in icm_param.cpp would make one file of several minutes, while in
-// six files `make -j2` builds them in about half that.
+// six files `make -j2` builds them in about half that. The Python module compiles the same
+// files (python/CMakeLists.txt), with the entropy's runs in its own, to run what icm_param runs.
 
 #ifndef ICM_PARAM_ENERGY_H
 #define ICM_PARAM_ENERGY_H

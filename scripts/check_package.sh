@@ -7,6 +7,9 @@
 #    can opt out of it, and is told what is missing when it is not there.
 # 2. test/subproject: a parent that add_subdirectory()s ICM keeps its build type (Debug, and
 #    none) and gets no ICM test, benchmark or tool; it is built and run too.
+# 3. When build/ has the Python module: the installed package icm, imported by Debian's
+#    /usr/bin/python3 from the prefix (PYTHONPATH=PREFIX/lib/python3.X/dist-packages, not
+#    build/python), parameterizes a bundled mesh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -29,6 +32,27 @@ for f in ICMConfig.cmake ICMConfigVersion.cmake ICMTargets.cmake ICMFindCHOLMOD.
   [ -f "$config_dir/$f" ] || fail "$f not installed"
 done
 [ -f "$work/prefix/include/ICM/Inverse_curvature_map_parameterizer_3.h" ] || fail "headers not installed"
+
+if grep -q '^ICM_BUILD_PYTHON:BOOL=ON' build/CMakeCache.txt; then
+  echo "== the Python package icm from the installed package"
+  python_dir=$work/prefix/$(sed -n 's/^ICM_PYTHON_INSTALL_DIR:STRING=//p' build/CMakeCache.txt)
+  for f in __init__.py __init__.pyi py.typed; do
+    [ -f "$python_dir/icm/$f" ] || fail "icm/$f not installed in $python_dir"
+  done
+  compgen -G "$python_dir/icm/_icm.cpython-*.so" >/dev/null || fail "icm/_icm not installed in $python_dir"
+  # From $work, so that no icm of the source tree or of build/ can be the one imported.
+  (cd "$work" && PYTHONPATH=$python_dir /usr/bin/python3 - "$mesh" "$python_dir") <<'PYTHON' || fail "the installed icm does not run"
+import sys
+import icm
+mesh, python_dir = sys.argv[1], sys.argv[2]
+assert icm.__file__.startswith(python_dir), "imported " + icm.__file__ + ", not the installed package"
+V, F, repairs = icm.read_mesh(mesh)
+for boundary in ("free", "circle"):  # ICM::parameterize, and the disk parameterizer
+    result = icm.parameterize(V, F, boundary=boundary)
+    assert result.fuv.shape == F.shape and result.report["flipped_faces"] == 0, result.report
+    print(f"{icm.__file__}: {result.report['faces']} faces, {result.charts} chart, {boundary} border")
+PYTHON
+fi
 
 echo "== test/consumer: find_package(ICM) from the installed package"
 configure "$work/consumer.log" -S test/consumer -B "$work/consumer" -DCMAKE_BUILD_TYPE=Release \

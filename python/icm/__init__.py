@@ -7,8 +7,10 @@ doc/batch.md.
 """
 
 from ._icm import (
+    BOUNDARIES,
     ENERGIES,
     HAS_GLTF,
+    METRICS,
     Error,
     Parameterization,
     measure_distortion,
@@ -18,8 +20,10 @@ from ._icm import (
 )
 
 __all__ = [
+    "BOUNDARIES",
     "ENERGIES",
     "HAS_GLTF",
+    "METRICS",
     "Error",
     "Parameterization",
     "measure_distortion",

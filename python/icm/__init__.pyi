@@ -6,6 +6,8 @@ import numpy as np
 import numpy.typing as npt
 
 ENERGIES: List[str]
+METRICS: List[str]
+BOUNDARIES: List[str]
 HAS_GLTF: bool
 
 class Error(ValueError):
@@ -36,6 +38,10 @@ def parameterize(
     energy: str = "entropy",
     atlas: Optional[int] = None,
     padding: int = 4,
+    seams: Optional[npt.ArrayLike] = None,
+    metric: str = "intrinsic-delaunay",
+    boundary: str = "free",
+    keep_overlaps: bool = False,
 ) -> Parameterization: ...
 def read_mesh(
     path: str, *, triangulate: bool = False

@@ -1,15 +1,13 @@
 """The Python module icm: against icm_param on the bundled meshes, the UVs' shapes and areas,
 the files, the refusals of bad arrays, the atlas."""
 
-import json
 import math
-import subprocess
 
 import numpy as np
 import pytest
 
 import icm
-from conftest import DATA, ICM_PARAM, MESHES
+from conftest import DATA, MESHES, assert_same_as_icm_param, run_icm_param
 
 
 def _triangle_areas_3d(V, F):
@@ -25,27 +23,11 @@ def _triangle_areas_uv(uv, fuv):
 @pytest.mark.parametrize("mesh", MESHES, ids=[m.name for m in MESHES])
 def test_same_as_icm_param(mesh, tmp_path):
     """icm.parameterize on the mesh icm.read_mesh read gives icm_param's figures."""
-    run = subprocess.run(
-        [ICM_PARAM, str(mesh), "-o", str(tmp_path / "out.obj"), "--json", "--quiet"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+    run, expected, obj = run_icm_param(mesh, tmp_path)
     if run.returncode != 0:
         pytest.skip("icm_param refuses " + mesh.name + ": " + run.stderr.strip())
-    expected = json.loads(run.stdout)
     V, F, _ = icm.read_mesh(str(mesh))
-    result = icm.parameterize(V, F)
-    got = result.report
-    for key in ("vertices", "faces", "charts", "components", "cones", "seam_edges", "flipped_faces", "genus"):
-        assert got[key] == expected[key], key
-    assert result.charts == expected["charts"]
-    for key in ("log_area_distortion", "log_area_distortion_area_weighted", "qc_mean", "seam_length"):
-        assert got[key] == pytest.approx(expected[key], rel=1e-9, abs=1e-300), key
-    # The vt count of icm_param's OBJ is the number of UV rows.
-    vts = sum(1 for line in open(tmp_path / "out.obj") if line.startswith("vt "))
-    assert vts == result.uv.shape[0]
-    assert result.seams.shape == (expected["seam_edges"], 2)
+    assert_same_as_icm_param(icm.parameterize(V, F), expected, obj)
 
 
 def test_shapes_and_chart_areas(sphere):
@@ -231,14 +213,8 @@ def test_int32_and_float32_inputs(sphere):
 def test_energies_same_as_icm_param(energy, tmp_path):
     """Every energy the module offers gives icm_param --energy's figures (nefertiti, a disk)."""
     mesh = DATA / "nefertiti.off"
-    run = subprocess.run(
-        [ICM_PARAM, str(mesh), "-o", str(tmp_path / "out.obj"), "--json", "--quiet", "--energy", energy],
-        capture_output=True,
-        text=True,
-        timeout=600,
-        check=True,
-    )
-    expected = json.loads(run.stdout)
+    run, expected, _ = run_icm_param(mesh, tmp_path, "--energy", energy)
+    assert run.returncode == 0, run.stderr
     V, F, _ = icm.read_mesh(str(mesh))
     got = icm.parameterize(V, F, energy=energy).report
     assert got["energy"] == expected["energy"] == energy
