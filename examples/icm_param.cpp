@@ -38,8 +38,6 @@
 #include "icm_param_batch.h"
 #include "icm_param_energy.h"
 
-#include <CGAL/Polygon_mesh_processing/border.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/version.h>
@@ -933,28 +931,6 @@ run_metric(const Mesh& mesh, Mesh::Property_map<Mesh::Halfedge_index, Kernel::Po
   return ICM::parameterize<Metric>(mesh, uv, options, cones, &seams, user_seams);
 }
 
-/// Why `mesh` is not a topological disk (one connected component, one boundary loop, genus
-/// 0), or with `several_loops` not a genus-0 surface with borders, in words, or empty.
-std::string why_not_a_disk(Mesh& mesh, bool several_loops = false)
-{
-  namespace PMP = CGAL::Polygon_mesh_processing;
-  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:icm_param_component").first;
-  const std::size_t components = PMP::connected_components(mesh, component);
-  mesh.remove_property_map(component);
-  if(components > 1)
-    return "it has " + std::to_string(components) + " connected components";
-  std::vector<Mesh::Halfedge_index> cycles;
-  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
-  const long loops = static_cast<long>(cycles.size());
-  const long euler =
-    static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) + static_cast<long>(num_faces(mesh));
-  const long genus = (2 - loops - euler) / 2;
-  if(genus == 0 && (loops == 1 || (several_loops && loops > 1)))
-    return {};
-  return loops == 0 ? "it is closed, genus " + std::to_string(genus)
-                    : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
-}
-
 /// A prescribed border by name; the parameterizer is instantiated for each in
 /// icm_param_border.cpp.
 ICM::Parameterization_report run_border(const Arguments& args, Mesh& mesh, icm_param::Corner_uv_map uvmap)
@@ -965,19 +941,6 @@ ICM::Parameterization_report run_border(const Arguments& args, Mesh& mesh, icm_p
   if(args.boundary == "square")
     return parameterize_disk<ICM::Square_border<Mesh>>(mesh, args.metric, uvmap);
   return parameterize_disk<ICM::Circle_domain>(mesh, args.metric, uvmap);
-}
-
-/// Why `mesh` is not the surface that --boundary needs (a disk; a genus-0 surface with
-/// borders for a circle domain), or empty.
-std::string why_the_border_is_refused(const Arguments& args, Mesh& mesh)
-{
-  const bool circle_domain = args.boundary == "circle-domain";
-  const std::string not_a_disk = why_not_a_disk(mesh, circle_domain);
-  return not_a_disk.empty() ? not_a_disk
-                            : "--boundary " + args.boundary +
-                                (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
-                                               : " needs a disk (one component, one boundary loop, genus 0), and ") +
-                                not_a_disk;
 }
 
 /// Why the map of a prescribed border is not written, or empty: it folds over itself, and
@@ -1093,7 +1056,9 @@ int run(const Arguments& args, const Failure_report& fail)
   std::optional<Run_figures> figures;
   if(prescribes_border(args))
   {
-    if(const std::string refused = why_the_border_is_refused(args, mesh); !refused.empty())
+    if(const std::string refused =
+         icm_param::why_the_border_is_refused("--boundary " + args.boundary, args.boundary, mesh);
+       !refused.empty())
       return fail_after_reading(refused);
     const ICM::Parameterization_report report = run_border(args, mesh, uvmap);
     if(report.status != SMP::OK)

@@ -184,9 +184,8 @@ struct Child
 };
 
 /// Starts this executable on `input`: `argv` with `--batch-item INPUT` added, its stdout and
-/// stderr into files. Several children share the cores, so each gets one BLAS thread.
-pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out, const fs::path& err,
-            bool single_thread)
+/// stderr into files.
+pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out, const fs::path& err)
 {
   std::vector<std::string> words(argv, argv + argc);
   words.push_back("--batch-item");
@@ -203,11 +202,6 @@ pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out
   const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   if(out_fd < 0 || err_fd < 0 || ::dup2(out_fd, 1) < 0 || ::dup2(err_fd, 2) < 0)
     ::_exit(127);
-  if(single_thread)
-  {
-    ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
-    ::setenv("OMP_NUM_THREADS", "1", 1);
-  }
   ::execv("/proc/self/exe", child_argv.data());
   ::execv(argv[0], child_argv.data());
   ::_exit(127);
@@ -403,6 +397,11 @@ int run_batch(const Batch_options& options, int argc, char** argv)
     return 1;
   }
 
+  // The children inherit one BLAS thread each, whatever -j: several share the cores, and a
+  // supernodal factorization's sums depend on the thread count, so that the outputs of -j 1
+  // and -j 2 are the same bytes (as icm.batch's).
+  ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
+  ::setenv("OMP_NUM_THREADS", "1", 1);
   const std::size_t jobs = static_cast<std::size_t>(std::max(1, options.jobs));
   std::vector<Child> running;
   std::size_t next = 0, done = 0, failed = 0;
@@ -415,7 +414,7 @@ int run_batch(const Batch_options& options, int argc, char** argv)
       child.out = scratch / (std::to_string(child.item) + ".out");
       child.err = scratch / (std::to_string(child.item) + ".err");
       child.start = Clock::now();
-      child.pid = spawn(argc, argv, items[child.item].input, child.out, child.err, jobs > 1);
+      child.pid = spawn(argc, argv, items[child.item].input, child.out, child.err);
       if(child.pid < 0)
       {
         Item& item = items[child.item];

@@ -49,6 +49,12 @@ ICM::Surface_parameterization_report parameterize_surface(const Mesh& mesh, cons
 template <class Border>
 ICM::Parameterization_report parameterize_disk(Mesh& mesh, const std::string& metric, Corner_uv_map uv);
 
+/// Why `mesh` is not the surface the prescribed border `boundary` needs (a disk; a genus-0
+/// surface with borders for circle-domain), as a sentence that starts with `asked` (how the
+/// caller names the option: "--boundary circle"), or empty. The disk parameterizer would
+/// take only the longest border's component, and find no border on a closed mesh.
+std::string why_the_border_is_refused(const std::string& asked, const std::string& boundary, Mesh& mesh);
+
 } // namespace icm_param
 
 #endif // ICM_PARAM_ENERGY_H

@@ -23,9 +23,6 @@
 #include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/parameterize.h>
 
-#include <CGAL/Polygon_mesh_processing/border.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -548,43 +545,16 @@ Run_figures run_surface(const Request& request, const Mesh& mesh, Corner_uv_map 
   return figures_of(report, mesh, seams, request.energy);
 }
 
-/// Why `mesh` is not a topological disk (one connected component, one boundary loop, genus
-/// 0), or with `several_loops` not a genus-0 surface with borders, in words, or empty: the
-/// reasons of icm_param's `why_not_a_disk`. The disk parameterizer would take only the
-/// longest border's component, and find no border on a closed mesh.
-std::string why_not_a_disk(Mesh& mesh, bool several_loops)
-{
-  namespace PMP = CGAL::Polygon_mesh_processing;
-  auto component = mesh.add_property_map<Mesh::Face_index, std::size_t>("f:icm_module_component").first;
-  const std::size_t components = PMP::connected_components(mesh, component);
-  mesh.remove_property_map(component);
-  if(components > 1)
-    return "it has " + std::to_string(components) + " connected components";
-  std::vector<Mesh::Halfedge_index> cycles;
-  PMP::extract_boundary_cycles(mesh, std::back_inserter(cycles));
-  const long loops = static_cast<long>(cycles.size());
-  const long euler =
-    static_cast<long>(num_vertices(mesh)) - static_cast<long>(num_edges(mesh)) + static_cast<long>(num_faces(mesh));
-  const long genus = (2 - loops - euler) / 2;
-  if(genus == 0 && (loops == 1 || (several_loops && loops > 1)))
-    return {};
-  return loops == 0 ? "it is closed, genus " + std::to_string(genus)
-                    : "it has genus " + std::to_string(genus) + " and " + std::to_string(loops) + " boundary loops";
-}
-
 /// Inverse_curvature_map_parameterizer_3 with the border asked, on a disk (a circle domain:
 /// genus 0 with borders), as icm_param's `run_border`; refused as icm_param refuses it: not
 /// the surface the border needs, or a map that folds over itself unless `keep_overlaps`
 /// (one chart with a UV per vertex cannot be cut apart where it folds, as a free border's is).
 Run_figures run_border(const Request& request, Mesh& mesh, Corner_uv_map uv)
 {
-  const bool circle_domain = request.boundary == "circle-domain";
-  if(const std::string not_a_disk = why_not_a_disk(mesh, circle_domain); !not_a_disk.empty())
-    throw Icm_error("boundary='" + request.boundary + "'" +
-                      (circle_domain ? " needs one component of genus 0 with at least one border loop, and "
-                                     : " needs a disk (one component, one boundary loop, genus 0), and ") +
-                      not_a_disk,
-                    static_cast<int>(SMP::ERROR_NO_TOPOLOGICAL_DISC));
+  if(const std::string refused =
+       icm_param::why_the_border_is_refused("boundary='" + request.boundary + "'", request.boundary, mesh);
+     !refused.empty())
+    throw Icm_error(refused, static_cast<int>(SMP::ERROR_NO_TOPOLOGICAL_DISC));
   ICM::Parameterization_report report;
   {
     py::gil_scoped_release released;
