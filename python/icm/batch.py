@@ -3,6 +3,7 @@
     python3 -m icm.batch [INPUT ...] [--list FILE] -O OUTDIR
                          [--scheduler ADDRESS | --workers N | --serial]
                          [--format obj|ply|gltf|glb] [--cones auto|N] [--energy NAME]
+                         [--metric NAME] [--boundary NAME] [--keep-overlaps]
                          [--atlas SIZE] [--padding PX] [--timeout SECONDS]
                          [--max-memory MB] [--resume] [--quiet]
 
@@ -123,6 +124,11 @@ def make_parser():
     parser.add_argument("--format", choices=FORMATS, default="obj", help="the outputs' format (default obj)")
     parser.add_argument("--cones", type=_cone_count, default="auto", metavar="auto|N", help="cones: auto or a count")
     parser.add_argument("--energy", default="entropy", metavar="NAME", help="one of " + ", ".join(icm.ENERGIES))
+    parser.add_argument("--metric", choices=icm.METRICS, default=icm.METRICS[0], metavar="NAME",
+                        help="the discrete conformal metric: " + ", ".join(icm.METRICS))
+    parser.add_argument("--boundary", choices=icm.BOUNDARIES, default="free", metavar="NAME",
+                        help="the border condition: " + ", ".join(icm.BOUNDARIES))
+    parser.add_argument("--keep-overlaps", action="store_true", help="keep a chart that folds over itself")
     parser.add_argument("--atlas", type=_whole(1, 65536, "the texture size"), metavar="SIZE",
                         help="pack the charts in a SIZE x SIZE texture")
     parser.add_argument("--padding", type=_whole(0, 32767, "the padding"), metavar="PX",
@@ -197,7 +203,10 @@ def make_output_dir(path):
 
 def child_parameters(args):
     """The options every child gets: the parameterization's, and the memory limit."""
-    parameters = ["--cones", str(args.cones), "--energy", args.energy]
+    parameters = ["--cones", str(args.cones), "--energy", args.energy, "--metric", args.metric,
+                  "--boundary", args.boundary]
+    if args.keep_overlaps:
+        parameters.append("--keep-overlaps")
     if args.atlas is not None:
         parameters += ["--atlas", str(args.atlas), "--padding", str(4 if args.padding is None else args.padding)]
     if args.max_memory is not None:
@@ -291,6 +300,9 @@ def run_child(argv):
     parser.add_argument("output")
     parser.add_argument("--cones", type=_cone_count, default="auto")
     parser.add_argument("--energy", default="entropy")
+    parser.add_argument("--metric", default=icm.METRICS[0])
+    parser.add_argument("--boundary", default="free")
+    parser.add_argument("--keep-overlaps", action="store_true")
     parser.add_argument("--atlas", type=int)
     parser.add_argument("--padding", type=int, default=4)
     parser.add_argument("--max-memory", type=float)
@@ -302,7 +314,9 @@ def run_child(argv):
         start = time.perf_counter()
         V, F, repairs = icm.read_mesh(args.input)
         read = time.perf_counter()
-        result = icm.parameterize(V, F, cones=args.cones, energy=args.energy, atlas=args.atlas, padding=args.padding)
+        result = icm.parameterize(V, F, cones=args.cones, energy=args.energy, metric=args.metric,
+                                  boundary=args.boundary, keep_overlaps=args.keep_overlaps, atlas=args.atlas,
+                                  padding=args.padding)
         parameterized = time.perf_counter()
         icm.write_mesh(args.output, V, F, result.uv, result.fuv)
         written = time.perf_counter()

@@ -233,8 +233,8 @@ def test_timeout_and_memory(work):
 
 
 def test_options_reach_the_child(work):
-    """--energy, --cones, --atlas, --padding and --format: the row is parameterize's with the
-    same options, the file a PLY."""
+    """--energy, --cones, --atlas, --padding, --format, --metric and --boundary: the row is
+    parameterize's with the same options, the file a PLY."""
     directory, _ = work
     mesh = DATA / "sphere966.off"
     run = batch(mesh, "-O", "options_out", "--serial", "--quiet", "--energy", "area", "--cones", 6, "--atlas", 256,
@@ -247,6 +247,17 @@ def test_options_reach_the_child(work):
         assert row[key] == report[key], key
     assert row["output"] == "options_out/sphere966.ply"
     assert (directory / row["output"]).read_bytes().startswith(b"ply")
+
+    # --metric and --boundary on a disk: the figures of parameterize with the same options.
+    mesh = DATA / "nefertiti.off"
+    run = batch(mesh, "-O", "border_out", "--serial", "--quiet", "--metric", "circle-packing", "--boundary", "circle",
+                cwd=directory)
+    assert run.returncode == 0, run.stderr
+    row, = summary(directory / "border_out")
+    V, F, _ = icm.read_mesh(str(mesh))
+    report = icm.parameterize(V, F, metric="circle-packing", boundary="circle").report
+    for key in ("metric", "boundary", "circle_deviation", "log_area_distortion"):
+        assert row[key] == report[key], key
 
 
 def test_usage_errors(work, tmp_path):
