@@ -393,6 +393,7 @@ std::string choose_mode(Arguments& args)
   {
     for(const auto& [option, given] : {std::pair<const char*, bool>{"--list", !batch.list.empty()},
                                        {"-j", batch.jobs != 1},
+                                       {"--format", batch.format != "obj"},
                                        {"--resume", batch.resume},
                                        {"--timeout", batch.timeout > 0},
                                        {"--max-memory", batch.max_memory_mb > 0}})

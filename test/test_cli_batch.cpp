@@ -186,6 +186,7 @@ TEST(CliBatch, CommandLinesRefusedBeforeAnyWork)
     {"-O out", "no input file"},
     {"a.off -o x.obj -j 2", "-j needs a batch: -O OUTDIR"},
     {"a.off -o x.obj --resume", "--resume needs a batch"},
+    {"a.off -o x.obj --format ply", "--format needs a batch"},
     {"a.off sub/a.off -o x.obj", "more than one input file ('sub/a.off')"},
     {"a.off -O out --format off", "--format"},
     {"a.off -O out -j 0", "-j"},
