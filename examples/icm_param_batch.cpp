@@ -88,8 +88,7 @@ std::string seconds_text(double seconds)
 struct Item
 {
   std::string input, output;
-  bool skipped = false; ///< --resume found it done; `row` is the earlier run's
-  Json row;
+  Json row; ///< null until it ran; the earlier run's when --resume skips it
 };
 
 /// The rows of an earlier summary.jsonl by input (the last row of each: a resumed batch
@@ -373,10 +372,7 @@ int run_batch(const Batch_options& options, int argc, char** argv)
     item.input = input;
     item.output = batch_output_path(options.output_dir, input, options.format);
     if(const auto row = earlier.find(input); row != earlier.end() && was_done(row->second, item.output))
-    {
-      item.skipped = true;
       item.row = row->second;
-    }
     else
       to_run.push_back(items.size());
     items.push_back(std::move(item));
