@@ -723,7 +723,8 @@ private:
 /// totals over the charts and the worst of each check.
 struct Run_figures
 {
-  int charts = 1, components = 1, cones = 0, wide_cones = 0, genus = 0, loops = 0, newton = 0, moved = 0;
+  int charts = 1, components = 1, cones = 0, wide_cones = 0, cones_given_up = 0, genus = 0, loops = 0, newton = 0,
+      moved = 0;
   /// Pairs of crossing border edges, after and before overlap removal (the parameterizer of
   /// an energy or a prescribed border removes none: both are its count).
   std::optional<int> overlaps, raw_overlaps;
@@ -769,6 +770,7 @@ struct Run_figures
     charts = s.charts;
     cones = s.cones;
     wide_cones = s.wide_cones;
+    cones_given_up = s.cones_given_up;
     genus = s.genus;
     loops = s.boundary_loops;
     newton = s.newton_iterations;
@@ -820,6 +822,7 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["genus"] = t.genus;
   j["cones"] = t.cones;
   j["cones_above_full_turn"] = t.wide_cones;
+  j["cones_given_up"] = t.cones_given_up;
   j["seam_edges"] = t.seam_edges;
   j["seam_length"] = t.seam_length;
   j["layout"] = t.layout;

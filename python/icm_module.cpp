@@ -600,6 +600,7 @@ py::dict report_dict(const Mesh& mesh, const Run_figures& t, const Request& requ
   d["genus"] = s.genus;
   d["cones"] = s.cones;
   d["cones_above_full_turn"] = s.wide_cones;
+  d["cones_given_up"] = s.cones_given_up;
   d["seam_edges"] = t.seam_edges;
   d["seam_length"] = t.seam_length;
   d["layout"] = s.layouts;

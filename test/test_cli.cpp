@@ -769,8 +769,10 @@ TEST(Cli, BadEnergyIsAUsageError)
 TEST(Cli, EnergyRunsOnEveryTopology)
 {
   // Closed genus 2 and genus 0 with seven holes: the energy is minimised over the border and
-  // the cones the entropy's run chose, and the charts are cut where they overlap, as the
-  // entropy's are.
+  // the cones the entropy's run placed, and the charts are cut where they overlap, as the
+  // entropy's are. Whether a surface with a border gives cones up to lay out in one piece is
+  // judged on the energy's own map: the pig's entropy map folds with all 8, its log-area map
+  // does not.
   Sandbox box;
   for(const char* name : {"eight.off", "pig.off"})
   {
@@ -780,7 +782,8 @@ TEST(Cli, EnergyRunsOnEveryTopology)
     const std::string json =
       json_line_of(box.run(input + " -o log_area.obj --svg log_area.svg --json --energy log-area"));
     EXPECT_EQ(json_value(json, "energy"), "\"log-area\"");
-    EXPECT_EQ(json_value(json, "cones"), json_value(entropy, "cones"));
+    EXPECT_EQ(json_number(json, "cones") + json_number(json, "cones_given_up"),
+              json_number(entropy, "cones") + json_number(entropy, "cones_given_up"));
     EXPECT_GT(json_number(json, "cones"), 0);
     EXPECT_GE(json_number(json, "energy_iterations"), 1);
     EXPECT_LT(json_number(json, "final_energy"), json_number(json, "initial_energy"));
@@ -1014,12 +1017,12 @@ std::string expect_valid_atlas(const Sandbox& box, const std::string& input, int
 TEST(Cli, AtlasPutsEveryChartInTheUnitSquarePaddedApart)
 {
   Sandbox box;
-  // pig.off: three charts once its overlaps are cut apart.
+  // pig.off with exactly 8 cones: three charts once its overlaps are cut apart.
   for(const char* packer : {"skyline", "shelf"})
   {
     SCOPED_TRACE(packer);
     const std::string json =
-      expect_valid_atlas(box, data_path("pig.off"), 256, 4, std::string("--atlas-packer ") + packer);
+      expect_valid_atlas(box, data_path("pig.off"), 256, 4, std::string("--cones 8 --atlas-packer ") + packer);
     EXPECT_EQ(json_value(json, "atlas_packer"), std::string("\"") + packer + "\"");
     EXPECT_GE(json_number(json, "atlas_charts"), 2);
     EXPECT_GT(json_number(json, "atlas_utilization"), 0.2);
@@ -1082,8 +1085,9 @@ TEST(Cli, AtlasRefusesBadValuesBeforeAnyWork)
   }
   // Found after the run (the charts are counted then): too many charts for the padding. With
   // 7 texels of padding a 16-texel square holds one chart of one or two texels, not the
-  // three of pig.off.
-  expect_clean_failure(box, box.run(input + " -o out.obj --atlas 16 --padding 7"), "do not fit in a 16 x 16 atlas");
+  // three of pig.off with 8 cones.
+  expect_clean_failure(box, box.run(input + " -o out.obj --cones 8 --atlas 16 --padding 7"),
+                       "do not fit in a 16 x 16 atlas");
 }
 
 } // namespace

@@ -115,6 +115,9 @@ struct Chart_report : Chart_solve_report
   /// chart was cut into (1: none) and the seam edges that cut added.
   int raw_overlapping_border_edges = 0;
   int pieces = 1, overlap_cut_edges = 0;
+  /// Automatic cones left out because the chart with all of them overlapped itself (a
+  /// surface with a border, automatic count): the most cones that lay out in one piece.
+  int cones_given_up = 0;
 };
 
 /// What `ICM::parameterize` did: the status, the reason of a failure, one `Chart_report` per
@@ -173,7 +176,7 @@ inline Energy_summary energy_summary(const Surface_parameterization_report& repo
 struct Surface_summary
 {
   int charts = 0, cones = 0, wide_cones = 0, genus = 0, boundary_loops = 0, newton_iterations = 0, moved_vertices = 0,
-      overlapping_border_edges = 0, raw_overlapping_border_edges = 0;
+      overlapping_border_edges = 0, raw_overlapping_border_edges = 0, cones_given_up = 0;
   double max_curvature_error = 0, max_layout_length_error = 0, seam_length_error = 0;
   std::string metrics, layouts, fallback_reason;
 };
@@ -197,6 +200,7 @@ inline Surface_summary surface_summary(const Surface_parameterization_report& re
     s.moved_vertices += c.moved_vertices;
     s.overlapping_border_edges += c.overlapping_border_edges;
     s.raw_overlapping_border_edges += c.raw_overlapping_border_edges;
+    s.cones_given_up += c.cones_given_up;
     s.max_curvature_error = std::max(s.max_curvature_error, c.max_curvature_error);
     s.max_layout_length_error = std::max(s.max_layout_length_error, c.max_layout_length_error);
     s.seam_length_error = std::max(s.seam_length_error, c.seam_length_error);
