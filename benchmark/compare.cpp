@@ -1144,12 +1144,13 @@ Job icm_job(const Mesh& input, bool remove_overlaps, int exact_cones = -1)
     r.code = static_cast<int>(report.status);
     r.seconds = std::chrono::duration<double>(t1 - t0).count();
     r.message = report.message;
-    int newton = 0, cones = 0, pieces = 0, raw_crossings = 0, crossings = 0, overlap_cuts = 0;
+    int newton = 0, cones = 0, given_up = 0, pieces = 0, raw_crossings = 0, crossings = 0, overlap_cuts = 0;
     std::string metric, fallback;
     for(const ICM::Chart_report& c : report.charts)
     {
       newton += c.newton_iterations;
       cones += static_cast<int>(c.cones.size());
+      given_up += c.cones_given_up;
       pieces += c.pieces;
       raw_crossings += c.raw_overlapping_border_edges;
       crossings += c.overlapping_border_edges;
@@ -1165,6 +1166,7 @@ Job icm_job(const Mesh& input, bool remove_overlaps, int exact_cones = -1)
     for(const ICM::Chart_report& c : report.charts)
       seam_length += c.seam_length;
     r.extra = {{"cones", cones},
+               {"cones_given_up", given_up},
                {"seam_edges", static_cast<double>(seams.size())},
                {"seam_length", seam_length},
                {"charts", pieces},

@@ -425,19 +425,24 @@ def section_nondisk(data):
     return nondisk_table.table(rows).rstrip("\n")
 
 
+def cones_and_given_up(row):
+    given_up = row.get("cones_given_up") or 0
+    return integer(row.get("cones")) + (f" ({integer(given_up)})" if given_up else "")
+
+
 def section_surfaces(data):
     both = data["all"][1] + data["icm"][1]
     icm = {r["mesh"]: r for r in both if r["method"] == "icm"}  # run icm's row if in both
     opened = {r["mesh"]: r for r in both if r["method"] == "icm_free_boundary_opened"}
     rows = [icm[m] for m in sorted(icm)]
-    out = ["| mesh | faces | genus / loops | cones | seam edges | charts | metric | QC mean "
+    out = ["| mesh | faces | genus / loops | cones (given up) | seam edges | charts | metric | QC mean "
            "| log area distortion | flipped | border crossings | time (s) | cones (s) "
            "| optimum (s) | cut (s) | layout (s) | peak MB | opened, free boundary (s) | status |",
            "|---|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
     for r in rows:
         topo = f'{r["genus"]} / {r["loops"]}' if "genus" in r else "disk"
         out.append("| " + " | ".join([
-            r["mesh"], str(r["faces"]), topo, integer(r.get("cones")),
+            r["mesh"], str(r["faces"]), topo, cones_and_given_up(r),
             integer(r.get("seam_edges")), integer(r.get("charts")), r.get("metric") or "",
             num(r.get("qc_mean"), 3), num(r.get("log_area_distortion"), 3),
             integer(r.get("flipped")), integer(r.get("border_crossings")),
