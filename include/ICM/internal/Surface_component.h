@@ -435,9 +435,12 @@ inline double mean_log_area_squared(const Mesh_index& index, const Cut_mesh& cut
 constexpr double fewer_cones_distortion_factor = 2.5;
 
 /// A surface with a border that wanted automatic cones and whose chart overlaps itself with
-/// all of them (`chart`, `cut`, `uv`): the most cones, in the greedy's order, that lay out in
-/// one piece, found by bisection over the count (more cones, longer seams, more overlaps:
-/// monotone on the shared disks, so a handful of solves). That map replaces the one given,
+/// all of them (`chart`, `cut`, `uv`): nearly the most cones, in the greedy's order, that lay
+/// out in one piece, found by bisection over the count (more cones, longer seams, more
+/// overlaps: monotone on the shared disks). Each trial is a solve and a layout of the whole
+/// mesh, so the bisection stops once the count is known within an eighth of the cones: on
+/// lion-head (Loop x2, 267k faces) 3 trials instead of 5, 16 cones kept instead of 17, the call
+/// 10.7 s instead of 16.7 s. That map replaces the one given,
 /// with `chart.cones_given_up` the cones left out, when its area distortion is at most
 /// `fewer_cones_distortion_factor` times the one with all cones; otherwise, or when even one
 /// cone overlaps, the map is left as it is, for the overlap removal. A user who passes a disk
@@ -463,7 +466,8 @@ void keep_one_piece_with_fewer_cones(const Mesh_index& index, std::vector<char> 
   Cut_mesh kept_cut;
   std::vector<Uv> kept_uv;
   int lo = 0, hi = all; // `hi` cones overlap; `lo` is the most that did not (0: none found yet)
-  while(hi - lo > 1)
+  const int close_enough = std::max(1, all / 8);
+  while(hi - lo > (lo == 0 ? 1 : close_enough))
   {
     const int mid = (lo + hi) / 2;
     keep_first(mid);
