@@ -116,7 +116,7 @@ struct Chart_report : Chart_solve_report
   int raw_overlapping_border_edges = 0;
   int pieces = 1, overlap_cut_edges = 0;
   /// Automatic cones left out because the chart with all of them overlapped itself (a
-  /// surface with a border, automatic count): the most cones that lay out in one piece.
+  /// surface with a border, automatic count), the last placed first, until it lays out in one piece.
   int cones_given_up = 0;
 };
 

@@ -438,13 +438,12 @@ constexpr double fewer_cones_distortion_factor = 2.5;
 /// all of them (`chart`, `cut`, `uv`): nearly the most cones, in the greedy's order, that lay
 /// out in one piece, found by bisection over the count (more cones, longer seams, more
 /// overlaps: monotone on the shared disks). Each trial is a solve and a layout of the whole
-/// mesh, so the bisection stops once the count is known within an eighth of the cones: on
-/// lion-head (Loop x2, 267k faces) 3 trials instead of 5, 16 cones kept instead of 17, the call
-/// 10.7 s instead of 16.7 s. That map replaces the one given,
-/// with `chart.cones_given_up` the cones left out, when its area distortion is at most
-/// `fewer_cones_distortion_factor` times the one with all cones; otherwise, or when even one
-/// cone overlaps, the map is left as it is, for the overlap removal. A user who passes a disk
-/// expects one island, but not at any price in area.
+/// mesh, so the bisection stops once the count is known within an eighth of the cones (on
+/// lion-head Loop x2, 267k faces: 3 trials instead of 5, one cone fewer kept). That map
+/// replaces the one given, with `chart.cones_given_up` the cones left out, when its area
+/// distortion is at most `fewer_cones_distortion_factor` times the one with all cones;
+/// otherwise, or when even one cone overlaps, the map is left as it is, for the overlap
+/// removal. A user who passes a disk expects one island, but not at any price in area.
 template <class Metric, class Solver, class Energy>
 void keep_one_piece_with_fewer_cones(const Mesh_index& index, std::vector<char> is_singular,
                                      const std::vector<double>& prescribed, std::vector<double> expected_curvature,
