@@ -1,5 +1,5 @@
 // CGAL 5.5's Surface_mesh_parameterization examples, each ported by changing only the
-// parameterizer's name to ICM's (internal/Cgal_arguments.h): the border parameterizer and
+// parameterizer's name to ICM's (pipeline/Cgal_arguments.h): the border parameterizer and
 // solver traits they pass become ICM's border condition and solver. Each test makes the
 // example's calls (its typedefs, its constructor, CGAL's `parameterize()`) on a bundled mesh
 // and checks the map: every vertex placed, no face flipped, the border the example asked for.

@@ -22,11 +22,11 @@
 #include <ICM/internal/Box_pairs.h>
 #include <ICM/internal/Exact_predicates.h>
 #include <ICM/metrics/Circle_packing_metric.h>
-#include <ICM/optimum/Chart_solver.h>
+#include <ICM/pipeline/Chart_solver.h>
 #include <ICM/optimum/Optimal_metric.h>
 #include <ICM/cut/Cut_graph.h>
 #include <ICM/cut/Cut_mesh.h>
-#include <ICM/internal/Surface_component.h>
+#include <ICM/pipeline/Surface_component.h>
 #include <ICM/metrics/Intrinsic_delaunay_metric.h>
 
 #include <gmpxx.h>

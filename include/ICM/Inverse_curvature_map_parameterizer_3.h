@@ -17,10 +17,10 @@
 #include <ICM/metrics/Inversive_distance_metric.h>
 #include <ICM/metrics/Vertex_scaling_metric.h>
 #include <ICM/border/Border_shape.h>
-#include <ICM/optimum/Chart_solver.h>
+#include <ICM/pipeline/Chart_solver.h>
 #include <ICM/optimum/Energies.h>
 #include <ICM/optimum/Optimal_metric.h>
-#include <ICM/internal/Cgal_arguments.h>
+#include <ICM/pipeline/Cgal_arguments.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Stopwatch.h>
 
@@ -92,7 +92,7 @@ public:
   using Energy = typename CGAL::Default::Get<Energy_, Curvature_entropy>::type;
   using Border_condition = typename internal::Border_condition_argument<BorderCondition, Metric_>::type;
   /// CGAL's names of the second and third arguments, when they are CGAL's
-  /// (internal/Cgal_arguments.h): the border parameterizer, the solver traits.
+  /// (pipeline/Cgal_arguments.h): the border parameterizer, the solver traits.
   using Border_parameterizer = Metric_;
   using Solver_traits = SparseSolver;
   static_assert(internal::Is_metric<Metric>::value,

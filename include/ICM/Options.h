@@ -251,7 +251,7 @@ enum class Layout_method
   Harmonic
 };
 
-/// What both entry points share: steps 5 and 7 of one chart (optimum/Chart_solver.h).
+/// What both entry points share: steps 5 and 7 of one chart (pipeline/Chart_solver.h).
 struct Chart_options
 {
   /// Every Newton solve of the run (the optimum, and the cones' and the energy's unless they

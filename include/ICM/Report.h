@@ -2,7 +2,7 @@
 // entry points report alike (`Chart_solve_report`), and around them each entry point's own:
 //
 //   Curvature_space_report             the energy optimizer (optimum/)
-//   Chart_solve_report                 steps 5 and 7 of one chart (optimum/Chart_solver.h)
+//   Chart_solve_report                 steps 5 and 7 of one chart (pipeline/Chart_solver.h)
 //   +- Parameterization_report         `Inverse_curvature_map_parameterizer_3` (a disk)
 //   +- Chart_report                    one component of `ICM::parameterize`, in
 //      Surface_parameterization_report    with the status and the stages' seconds

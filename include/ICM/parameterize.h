@@ -11,7 +11,7 @@
 //   on the surface cut open   cut graph and wedges (cut/) -> layout of the surface's flat
 //                             metric, both sides of a seam one length (layout/) -> checks:
 //                             orientation, lengths, seams, border overlaps
-// (internal/Surface_component.h), and the charts are then packed side by side
+// (pipeline/Surface_component.h), and the charts are then packed side by side
 // (layout/Chart_packing.h), or into the unit square of a texture (`options.atlas`,
 // layout/Atlas_packing.h). Options and reports: Options.h, Report.h. See
 // doc/surfaces.md.
@@ -24,7 +24,7 @@
 #include <ICM/Report.h>
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/internal/Stopwatch.h>
-#include <ICM/internal/Surface_component.h>
+#include <ICM/pipeline/Surface_component.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>

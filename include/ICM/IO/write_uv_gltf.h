@@ -15,7 +15,7 @@
 
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/internal/Atomic_file.h>
-#include <ICM/internal/Float32_output.h>
+#include <ICM/IO/Float32_output.h>
 
 #include <tiny_gltf.h>
 

@@ -11,7 +11,7 @@
 
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/internal/Atomic_file.h>
-#include <ICM/internal/Float32_output.h>
+#include <ICM/IO/Float32_output.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -14,7 +14,7 @@
 #include <ICM/border/Border_target.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
-#include <ICM/layout/Layout.h>
+#include <ICM/internal/Vector_geometry.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>

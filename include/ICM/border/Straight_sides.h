@@ -5,7 +5,7 @@
 #ifndef ICM_BORDER_STRAIGHT_SIDES_H
 #define ICM_BORDER_STRAIGHT_SIDES_H
 
-#include <ICM/layout/Layout.h>
+#include <ICM/internal/Vector_geometry.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>

@@ -16,7 +16,6 @@
 
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
-#include <ICM/measures/Distortion.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <Eigen/Core>

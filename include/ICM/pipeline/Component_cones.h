@@ -2,15 +2,15 @@
 // a border wants cones at all, where the greedy placement starts, and the automatic cones
 // placed in the class the optimum is computed in; with the progress a component reports.
 
-#ifndef ICM_INTERNAL_COMPONENT_CONES_H
-#define ICM_INTERNAL_COMPONENT_CONES_H
+#ifndef ICM_PIPELINE_COMPONENT_CONES_H
+#define ICM_PIPELINE_COMPONENT_CONES_H
 
 #include <ICM/Status.h>
 #include <ICM/Options.h>
 #include <ICM/cones/Singular_vertices.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/metrics/Circle_packing_metric.h>
-#include <ICM/optimum/Chart_solver.h>
+#include <ICM/pipeline/Chart_solver.h>
 #include <ICM/internal/Mesh_index.h>
 
 #include <algorithm>
@@ -182,4 +182,4 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
 } // namespace internal
 } // namespace ICM
 
-#endif // ICM_INTERNAL_COMPONENT_CONES_H
+#endif // ICM_PIPELINE_COMPONENT_CONES_H

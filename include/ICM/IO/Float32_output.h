@@ -5,8 +5,8 @@
 // fit in that range before anything is written, and the binary forms are little-endian
 // whatever the machine's byte order, written byte by byte rather than by copying memory.
 
-#ifndef ICM_INTERNAL_FLOAT32_OUTPUT_H
-#define ICM_INTERNAL_FLOAT32_OUTPUT_H
+#ifndef ICM_IO_FLOAT32_OUTPUT_H
+#define ICM_IO_FLOAT32_OUTPUT_H
 
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/Status.h>
@@ -102,4 +102,4 @@ inline void put_exact_float(std::ostream& os, float x)
 } // namespace internal
 } // namespace ICM
 
-#endif // ICM_INTERNAL_FLOAT32_OUTPUT_H
+#endif // ICM_IO_FLOAT32_OUTPUT_H

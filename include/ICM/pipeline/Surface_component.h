@@ -2,13 +2,13 @@
 // given its cones and the optimum of its metric, on the surface cut open the layout of that
 // metric and its checks, then the overlap removal; and the charts packed side by side.
 
-#ifndef ICM_INTERNAL_SURFACE_COMPONENT_H
-#define ICM_INTERNAL_SURFACE_COMPONENT_H
+#ifndef ICM_PIPELINE_SURFACE_COMPONENT_H
+#define ICM_PIPELINE_SURFACE_COMPONENT_H
 
 #include <ICM/Status.h>
 #include <ICM/Options.h>
 #include <ICM/Report.h>
-#include <ICM/internal/Component_cones.h>
+#include <ICM/pipeline/Component_cones.h>
 #include <ICM/cones/Singular_vertices.h>
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
@@ -22,7 +22,7 @@
 #include <ICM/measures/Distortion.h>
 #include <ICM/metrics/Circle_packing_metric.h>
 #include <ICM/metrics/Intrinsic_delaunay_metric.h>
-#include <ICM/optimum/Chart_solver.h>
+#include <ICM/pipeline/Chart_solver.h>
 #include <ICM/optimum/Curvature_space_optimizer.h>
 #include <ICM/optimum/Energies.h>
 #include <ICM/optimum/Optimal_metric.h>
@@ -573,4 +573,4 @@ Status pack_and_write_charts(
 } // namespace internal
 } // namespace ICM
 
-#endif // ICM_INTERNAL_SURFACE_COMPONENT_H
+#endif // ICM_PIPELINE_SURFACE_COMPONENT_H

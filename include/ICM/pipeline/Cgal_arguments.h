@@ -11,12 +11,13 @@
 //    exactly, which CGAL's default BiCGSTAB does not do.
 // Anything else stops the compilation with one sentence naming the argument.
 
-#ifndef ICM_INTERNAL_CGAL_ARGUMENTS_H
-#define ICM_INTERNAL_CGAL_ARGUMENTS_H
+#ifndef ICM_PIPELINE_CGAL_ARGUMENTS_H
+#define ICM_PIPELINE_CGAL_ARGUMENTS_H
 
 #include <ICM/border/Border_conditions.h>
 #include <ICM/border/Border_shape.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
+#include <ICM/metrics/Intrinsic_delaunay_metric.h>
 
 #include <CGAL/Default.h>
 
@@ -136,4 +137,4 @@ Condition border_condition_of(const BorderParameterizer& border)
 } // namespace internal
 } // namespace ICM
 
-#endif // ICM_INTERNAL_CGAL_ARGUMENTS_H
+#endif // ICM_PIPELINE_CGAL_ARGUMENTS_H
