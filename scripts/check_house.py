@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks the plan of the house (issue 52): every include points down, every file and function fits a reader.
 
-    scripts/check_house.py [--root DIR]
+    scripts/check_house.py [--root DIR] [--self-test]
 
 1. Layers. The stage order is the table of doc/design.md headed "stages"; every header under
    include/ICM/ belongs to exactly one stage (its folder, or its own name at the top), and
@@ -15,14 +15,18 @@
    blanked out: a brace block whose head ends in a parameter list (or a constructor's
    initializers) and that is not inside another function is a function, so lambdas and
    local classes count towards the function around them.
-Prints every violation with its file and line, and exits 1 if there is any.
+Prints every violation with its file and line, and exits 1 if there is any. --self-test checks
+the check: on a copy of the tree with an upward include planted in the ground, and a function
+and a file grown too long, it must find exactly those three.
 """
 
 import argparse
 import ast
 import os
 import re
+import shutil
 import sys
+import tempfile
 
 MAX_FILE_LINES = 600
 MAX_FUNCTION_LINES = 100
@@ -176,10 +180,38 @@ def check_sizes(root, problems):
     return count
 
 
+def self_test(root):
+    """The problems found on a copy of `root` with three planted: they must be exactly those."""
+    with tempfile.TemporaryDirectory() as copy:
+        shutil.copytree(os.path.join(root, "include"), os.path.join(copy, "include"))
+        os.mkdir(os.path.join(copy, "doc"))
+        shutil.copy(os.path.join(root, "doc", "design.md"), os.path.join(copy, "doc"))
+        ground = os.path.join(copy, "include", "ICM", "internal", "Vector_geometry.h")
+        with open(ground, encoding="utf-8") as f:
+            text = f.read()
+        with open(ground, "w", encoding="utf-8") as f:
+            f.write(text.replace("#include", "#include <ICM/pipeline/Surface_component.h>\n#include", 1))
+        with open(os.path.join(copy, "include", "ICM", "internal", "Planted.h"), "w", encoding="utf-8") as f:
+            f.write("namespace ICM {\nint planted(int a)\n{\n" + "  ++a;\n" * (MAX_FILE_LINES - 3) + "  return a;\n}\n}\n")
+        problems = []
+        check_layers(copy, problems)
+        check_sizes(copy, problems)
+    expected = ["Vector_geometry.h:", "Planted.h: ", "Planted.h:3: a function of"]
+    found = all(any(e in p for p in problems) for e in expected) and len(problems) == len(expected)
+    print("check_house --self-test: " + ("found the three planted problems" if found else "wrong findings:"))
+    for p in problems:
+        print("  " + p)
+    return found
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--root", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-    root = os.path.relpath(parser.parse_args().root)
+    parser.add_argument("--self-test", action="store_true", help="check the check on planted problems")
+    args = parser.parse_args()
+    root = os.path.relpath(args.root)
+    if args.self_test:
+        sys.exit(0 if self_test(root) else 1)
     problems = []
     headers = check_layers(root, problems)
     sources = check_sizes(root, problems)
