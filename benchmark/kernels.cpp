@@ -3,6 +3,8 @@
 // Meshes: the bundled disks, and three_peaks refined by Loop subdivision for larger sizes.
 // BM_flat_strip times the whole ICM::parameterize call on 1 x N strips of unit squares and
 // fits its growth in N (Google Benchmark's complexity fit): it must stay linear.
+// BM_read_triangle_mesh reads a file as icm_param --triangulate does: lion-head Loop x3
+// against a square tube of polygons with long collinear sides, of the same face count.
 #include <ICM/curvature/Curvature_map.h>
 #include <ICM/curvature/Dynamic_laplacian.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
@@ -12,6 +14,7 @@
 #include <ICM/internal/Mesh_index.h>
 #include <ICM/measures/Distortion.h>
 #include <ICM/parameterize.h>
+#include <ICM/IO/read_triangle_mesh.h>
 
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
@@ -19,9 +22,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -194,6 +200,131 @@ void BM_flat_strip(benchmark::State& state)
   state.counters["log_area"] = ICM::measure_distortion_corner_uv(mesh, uv).log_area_distortion;
 }
 
+/// Writes an OFF file of `points` and `faces` (17 digits: the file reads back exactly).
+void write_off(const std::string& path, const std::vector<std::array<double, 3>>& points,
+               const std::vector<std::vector<std::size_t>>& faces)
+{
+  std::ofstream out(path);
+  out.precision(17);
+  out << "OFF\n" << points.size() << ' ' << faces.size() << " 0\n";
+  for(const auto& p : points)
+    out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  for(const auto& f : faces)
+  {
+    out << f.size();
+    for(std::size_t i : f)
+      out << ' ' << i;
+    out << '\n';
+  }
+}
+
+std::string temporary_file(const std::string& name)
+{
+  return (std::filesystem::temp_directory_path() / ("icm_kernels_" + name)).string();
+}
+
+/// lion-head refined three times by Loop (1 067 136 triangles), written once as OFF.
+std::string lion_head_loop3_file()
+{
+  static const std::string path = [] {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(ICM_BENCHMARK_LION_HEAD, mesh))
+      return std::string();
+    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
+    std::vector<std::array<double, 3>> points;
+    for(auto v : vertices(mesh))
+      points.push_back({mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z()});
+    std::vector<std::vector<std::size_t>> faces;
+    for(auto f : mesh.faces())
+    {
+      faces.emplace_back();
+      for(auto v : vertices_around_face(mesh.halfedge(f), mesh))
+        faces.back().push_back(v.idx());
+    }
+    const std::string file = temporary_file("lion_head_loop3.off");
+    write_off(file, points, faces);
+    return file;
+  }();
+  return path;
+}
+
+/// A tall square tube, open at both ends, of 4 x 16 columns and 21 rows of rectangles, each
+/// a polygon with 397 sides along each long side (796 corners, 794 triangles once
+/// triangulated: 1 067 136 in all, lion-head Loop x3's count). Its faces' normals are
+/// along x or y, so the first axis of their best-fit plane is horizontal and each long side
+/// is 397 collinear sides of one abscissa: the case a sweep along that abscissa makes
+/// quadratic.
+std::string tube_of_long_polygons_file()
+{
+  static const std::string path = [] {
+    const int columns = 16, rows = 21, steps = 397, around = 4 * columns, levels = rows * steps + 1;
+    // The corners of the square's border, counter-clockwise seen from above, side 1 long.
+    auto corner = [&](int c) -> std::array<double, 2> {
+      const int side = c / columns;
+      const double t = double(c % columns) / columns;
+      switch(side)
+      {
+      case 0:
+        return {t, 0};
+      case 1:
+        return {1, t};
+      case 2:
+        return {1 - t, 1};
+      default:
+        return {0, 1 - t};
+      }
+    };
+    std::vector<std::array<double, 3>> points;
+    for(int c = 0; c < around; ++c)
+      for(int z = 0; z < levels; ++z)
+        points.push_back({corner(c)[0], corner(c)[1], 100.0 * z / (levels - 1)});
+    auto point = [&](int c, int z) { return std::size_t((c % around) * levels + z); };
+    std::vector<std::vector<std::size_t>> faces;
+    for(int c = 0; c < around; ++c)
+      for(int r = 0; r < rows; ++r)
+      {
+        std::vector<std::size_t> face;
+        for(int z = r * steps; z <= (r + 1) * steps; ++z) // up the column's right side
+          face.push_back(point(c + 1, z));
+        for(int z = (r + 1) * steps; z >= r * steps; --z) // down its left side
+          face.push_back(point(c, z));
+        faces.push_back(face);
+      }
+    const std::string file = temporary_file("tube_of_long_polygons.off");
+    write_off(file, points, faces);
+    return file;
+  }();
+  return path;
+}
+
+/// Reading a file with triangulation on, as icm_param --triangulate does.
+void BM_read_triangle_mesh(benchmark::State& state)
+{
+  const bool tube = state.range(0) != 0;
+  const std::string path = tube ? tube_of_long_polygons_file() : lion_head_loop3_file();
+  if(path.empty())
+  {
+    state.SkipWithError("lion-head.off not found (ICM_BENCHMARK_LION_HEAD)");
+    return;
+  }
+  ICM::IO::Mesh_reading_options options;
+  options.triangulate = true;
+  ICM::IO::Mesh_reading_report report;
+  Mesh mesh;
+  for(auto _ : state)
+  {
+    if(!ICM::IO::read_triangle_mesh(path, mesh, report, options))
+    {
+      state.SkipWithError(report.message.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(mesh.number_of_faces());
+  }
+  state.counters["faces"] = static_cast<double>(mesh.number_of_faces());
+  state.counters["file_faces"] = static_cast<double>(report.file_faces);
+  state.SetLabel(tube ? "tube of long polygons" : "lion-head Loop x3");
+}
+
 } // namespace
 
 BENCHMARK(BM_flat_strip)
@@ -217,4 +348,5 @@ BENCHMARK(BM_elimination_order)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_newton_step)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_free_boundary_optimum)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_layout)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_read_triangle_mesh)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

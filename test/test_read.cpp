@@ -475,8 +475,8 @@ TEST(ReadTriangleMesh, PolygonsThatCrossThemselvesAreRefusedBeforeTriangulation)
   EXPECT_EQ(num_faces(mesh), 5u);
   // The star {7/2}: CGAL 5.5's triangulate_face crashed on it.
   EXPECT_FALSE(mesh_of(off_text(heptagon, {{0, 2, 4, 6, 1, 3, 5}}), mesh, report, true));
-  EXPECT_EQ(report.message, "face 0 (line 10) (7 sides) cannot be triangulated: its side from vertex 2 to vertex 4 "
-                            "meets its side from vertex 1 to vertex 3 on its best-fit plane (the polygon crosses "
+  EXPECT_EQ(report.message, "face 0 (line 10) (7 sides) cannot be triangulated: its side from vertex 0 to vertex 2 "
+                            "meets its side from vertex 6 to vertex 1 on its best-fit plane (the polygon crosses "
                             "itself, it is not simple)");
   // The same star tilted out of every axis plane, the star's corners off its plane by a little.
   for(auto& p : heptagon)
@@ -499,6 +499,31 @@ TEST(ReadTriangleMesh, PolygonsThatCrossThemselvesAreRefusedBeforeTriangulation)
     << report.message;
   EXPECT_FALSE(mesh_of(off_text({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}, {{0, 1, 2, 3}}), mesh, report, true));
   EXPECT_NE(report.message.find("its corners do not span a plane polygon"), std::string::npos) << report.message;
+}
+
+TEST(ReadTriangleMesh, TallPolygonsAreCheckedWithoutComparingEverySideWithEveryOther)
+{
+  // A tall, thin polygon: 2,000 corners on two vertical lines, all of its long sides sharing
+  // one abscissa (where a sweep along x compares every side with every other).
+  const int m = 1000;
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::size_t> polygon;
+  for(int i = 0; i < m; ++i)
+    points.push_back({0, double(i), 0});
+  for(int i = m - 1; i >= 0; --i)
+    points.push_back({1, double(i), 0});
+  for(std::size_t i = 0; i < points.size(); ++i)
+    polygon.push_back(i);
+  Mesh mesh;
+  ICM::IO::Mesh_reading_report report;
+  ASSERT_TRUE(mesh_of(off_text(points, {polygon}), mesh, report, true)) << report.message;
+  EXPECT_EQ(num_faces(mesh), 2u * m - 2);
+  // One corner of the right side moved across the left one: both of its sides cross it.
+  const std::size_t moved = m + m / 2;
+  points[moved][0] = -1;
+  EXPECT_FALSE(mesh_of(off_text(points, {polygon}), mesh, report, true));
+  EXPECT_NE(report.message.find("the polygon crosses itself"), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("vertex " + std::to_string(moved) + " "), std::string::npos) << report.message;
 }
 
 TEST(ReadTriangleMesh, DegenerateFacesAreJudgedAtAnyScaleAndAnExtentBeyondADoubleIsNamed)

@@ -186,7 +186,7 @@ write("off_heptagon.off", off(hept, [tuple(range(7))]), 1, "non-triangle faces")
 cases.append(("off_heptagon.off", "--triangulate", 0, "triangulated 1 polygon"))
 write("off_heptagon_self_crossing.off", off(hept, [tuple(2 * k % 7 for k in range(7))]), 1, "non-triangle faces")
 cases.append(("off_heptagon_self_crossing.off", "--triangulate", 1,
-              "its side from vertex 2 to vertex 4 meets its side from vertex 1 to vertex 3 on its best-fit plane"))
+              "its side from vertex 0 to vertex 2 meets its side from vertex 6 to vertex 1 on its best-fit plane"))
 # --- topologies that must work: closed, genus 1, two components --------------------------------
 def uv_sphere(n=6, m=8):
     pts = [(0, 0, 1)] + [(math.sin(math.pi * i / n) * math.cos(2 * math.pi * j / m),

@@ -13,6 +13,7 @@
 
 #include <ICM/IO/Soup_reading.h>
 #include <ICM/Status.h>
+#include <ICM/internal/Box_pairs.h>
 #include <ICM/internal/Exact_predicates.h>
 
 #include <algorithm>
@@ -397,42 +398,40 @@ struct Side_meeting
   bool found = false;
 };
 
-/// The first two sides of the plane polygon `q` that meet other than at their common corner
-/// (a side folding back onto the next counts). Sides sorted by their smallest abscissa, so
-/// that only sides whose abscissae overlap are compared.
+/// Two sides of the plane polygon `q` that meet other than at their common corner (a side
+/// folding back onto the next counts), or none. Only sides whose bounding boxes meet are
+/// compared, the pairs found through a box tree: n log n for n sides plus the pairs of
+/// meeting boxes, even when many sides share one abscissa (a tall polygon's long vertical
+/// sides), where a sweep along one axis compares them all with each other.
 inline Side_meeting sides_that_meet(const std::vector<Uv>& q)
 {
   const std::size_t n = q.size();
   auto end_of = [&](std::size_t side) { return q[(side + 1) % n]; };
-  std::vector<std::size_t> order(n);
+  std::vector<Box2> boxes(n);
   for(std::size_t i = 0; i < n; ++i)
-    order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::min(q[a][0], end_of(a)[0]) < std::min(q[b][0], end_of(b)[0]);
-  });
-  for(std::size_t a = 0; a < n; ++a)
   {
-    const std::size_t i = order[a];
-    const double right = std::max(q[i][0], end_of(i)[0]);
-    for(std::size_t b = a + 1; b < n && std::min(q[order[b]][0], end_of(order[b])[0]) <= right; ++b)
-    {
-      const std::size_t j = order[b];
-      const std::size_t first = std::min(i, j), second = std::max(i, j);
-      bool meet = false;
-      if(second == first + 1 || (first == 0 && second == n - 1))
-      {
-        // Neighbours: they meet at their common corner only, unless the later one folds back.
-        const std::size_t before = second == first + 1 ? first : second;
-        const auto &a0 = q[before], &corner = q[(before + 1) % n], &a2 = q[(before + 2) % n];
-        meet = orientation(a0, corner, a2) == 0 && !collinear_are_ordered_along_line(a0, corner, a2);
-      }
-      else
-        meet = segments_meet(q[i], end_of(i), q[j], end_of(j));
-      if(meet)
-        return {first, second, true};
-    }
+    boxes[i] = Box2::around(q[i]);
+    boxes[i].extend(end_of(i));
   }
-  return {};
+  auto folds_back_at_corner_after = [&](std::size_t side) {
+    const auto &a0 = q[side], &corner = q[(side + 1) % n], &a2 = q[(side + 2) % n];
+    return orientation(a0, corner, a2) == 0 && !collinear_are_ordered_along_line(a0, corner, a2);
+  };
+  Side_meeting meeting;
+  Box_tree(boxes).for_each_meeting_pair([&](int i, int j) {
+    const std::size_t first = static_cast<std::size_t>(i), second = static_cast<std::size_t>(j);
+    bool meet = false;
+    if(second == first + 1)
+      meet = folds_back_at_corner_after(first); // neighbours meet at their common corner only
+    else if(first == 0 && second == n - 1)
+      meet = folds_back_at_corner_after(second);
+    else
+      meet = segments_meet(q[first], end_of(first), q[second], end_of(second));
+    if(meet)
+      meeting = {first, second, true};
+    return !meet;
+  });
+  return meeting;
 }
 
 /// Why polygon `p` cannot be triangulated, or empty. CGAL's triangulate_face projects a
