@@ -504,7 +504,8 @@ TEST(ReadTriangleMesh, PolygonsThatCrossThemselvesAreRefusedBeforeTriangulation)
 TEST(ReadTriangleMesh, TallPolygonsAreCheckedWithoutComparingEverySideWithEveryOther)
 {
   // A tall, thin polygon: 2,000 corners on two vertical lines, all of its long sides sharing
-  // one abscissa (where a sweep along x compares every side with every other).
+  // one abscissa (where a sweep along x compares every side with every other, and CGAL's
+  // triangulate_face walks up the triangulation for each corner).
   const int m = 1000;
   std::vector<std::array<double, 3>> points;
   std::vector<std::size_t> polygon;
@@ -518,6 +519,18 @@ TEST(ReadTriangleMesh, TallPolygonsAreCheckedWithoutComparingEverySideWithEveryO
   ICM::IO::Mesh_reading_report report;
   ASSERT_TRUE(mesh_of(off_text(points, {polygon}), mesh, report, true)) << report.message;
   EXPECT_EQ(num_faces(mesh), 2u * m - 2);
+  // Its triangles tile it, all turned as the polygon is (clockwise seen from +z).
+  double area = 0;
+  for(auto f : faces(mesh))
+  {
+    const auto h = halfedge(f, mesh);
+    const auto &a = mesh.point(source(h, mesh)), &b = mesh.point(target(h, mesh)),
+               &c = mesh.point(target(next(h, mesh), mesh));
+    const double twice_area = CGAL::cross_product(b - a, c - a).z();
+    EXPECT_LT(twice_area, 0);
+    area -= twice_area / 2;
+  }
+  EXPECT_NEAR(area, m - 1.0, 1e-9);
   // One corner of the right side moved across the left one: both of its sides cross it.
   const std::size_t moved = m + m / 2;
   points[moved][0] = -1;

@@ -18,6 +18,7 @@
 #ifndef ICM_IO_READ_TRIANGLE_MESH_H
 #define ICM_IO_READ_TRIANGLE_MESH_H
 
+#include <ICM/IO/Polygon_triangulation.h>
 #include <ICM/IO/Soup_checks.h>
 #include <ICM/IO/read_polygon_soup.h>
 
@@ -40,8 +41,9 @@ namespace IO {
 /// What `read_triangle_mesh()` may repair, and the reader's limits.
 struct Mesh_reading_options
 {
-  /// Split polygons into triangles (`CGAL::Polygon_mesh_processing::triangulate_face`);
-  /// otherwise a polygon is refused.
+  /// Split polygons into triangles: quadrilaterals by
+  /// `CGAL::Polygon_mesh_processing::triangulate_face`, larger polygons along the constrained
+  /// Delaunay triangulation of their corners; otherwise a polygon is refused.
   bool triangulate = false;
   /// Refuse a triangle of (relatively) zero area, naming it; the parameterizers refuse them
   /// anyway, but without the file's line.
@@ -197,8 +199,37 @@ inline std::string check_soup(const Polygon_soup& soup, const IO::Mesh_reading_o
   return why;
 }
 
+/// Splits face `f` of `mesh`, polygon `p` of `soup`, into the triangles of the constrained
+/// Delaunay triangulation of its corners on its best-fit plane (Polygon_triangulation.h).
+/// Returns false, leaving it as it is, when its corners cannot be matched with the
+/// polygon's or it has no such triangulation.
+template <class PolygonMesh>
+bool split_polygon_into_ears(typename boost::graph_traits<PolygonMesh>::face_descriptor f, PolygonMesh& mesh,
+                             const Polygon_soup& soup, std::size_t p)
+{
+  const auto& polygon = soup.polygons[p];
+  const auto points = get(CGAL::vertex_point, mesh);
+  auto is_corner = [&](auto h, std::size_t c) {
+    const auto& x = get(points, target(h, mesh));
+    const auto& y = soup.points[polygon[c]];
+    return x.x() == y.x() && x.y() == y.y() && x.z() == y.z();
+  };
+  // The face's corners are the polygon's in order, from some corner on: no two corners of
+  // a polygon that passed the checks are at one point, so the first one is found by its point.
+  auto h = halfedge(f, mesh);
+  for(std::size_t k = 0; k < polygon.size() && !is_corner(h, 0); ++k)
+    h = next(h, mesh);
+  for(std::size_t c = 0; c < polygon.size(); ++c, h = next(h, mesh))
+    if(!is_corner(h, c))
+      return false;
+  set_halfedge(f, h, mesh);
+  return split_face_into_ears(f, corners_on_best_fit_plane(soup, p), mesh);
+}
+
 /// Triangulates the faces of `mesh` with more than 3 sides (the soup's polygons, in order),
-/// counting them into `report`; returns why one could not be, or empty.
+/// counting them into `report`; returns why one could not be, or empty. Quadrilaterals go
+/// through CGAL's triangulate_face (its choice of diagonal), larger polygons are split
+/// along their constrained Delaunay triangulation in n log n (Polygon_triangulation.h).
 template <class PolygonMesh>
 std::string triangulate_polygons(PolygonMesh& mesh, const Polygon_soup& soup, IO::Mesh_reading_report& report)
 {
@@ -217,10 +248,11 @@ std::string triangulate_polygons(PolygonMesh& mesh, const Polygon_soup& soup, IO
   }
   for(std::size_t i = 0; i < polygons.size(); ++i)
   {
-    bool done = false;
+    bool done = soup.polygons[numbers[i]].size() > 4 && split_polygon_into_ears(polygons[i], mesh, soup, numbers[i]);
     try
     {
-      done = CGAL::Polygon_mesh_processing::triangulate_face(polygons[i], mesh);
+      if(!done)
+        done = CGAL::Polygon_mesh_processing::triangulate_face(polygons[i], mesh);
     }
     catch(const std::exception&)
     {
