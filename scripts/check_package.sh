@@ -36,7 +36,8 @@ done
 if grep -q '^ICM_BUILD_PYTHON:BOOL=ON' build/CMakeCache.txt; then
   echo "== the Python package icm from the installed package"
   python_dir=$work/prefix/$(sed -n 's/^ICM_PYTHON_INSTALL_DIR:STRING=//p' build/CMakeCache.txt)
-  for f in __init__.py __init__.pyi py.typed; do
+  for f in __init__.py __init__.pyi py.typed batch.py _batch_child.py _batch_command_line.py _batch_jobs.py \
+           _batch_summary.py; do
     [ -f "$python_dir/icm/$f" ] || fail "icm/$f not installed in $python_dir"
   done
   compgen -G "$python_dir/icm/_icm.cpython-*.so" >/dev/null || fail "icm/_icm not installed in $python_dir"
@@ -52,6 +53,9 @@ for boundary in ("free", "circle"):  # ICM::parameterize, and the disk parameter
     assert result.fuv.shape == F.shape and result.report["flipped_faces"] == 0, result.report
     print(f"{icm.__file__}: {result.report['faces']} faces, {result.charts} chart, {boundary} border")
 PYTHON
+  # icm.batch and its parts import from the installed package (--help needs no Dask).
+  (cd "$work" && PYTHONPATH=$python_dir /usr/bin/python3 -m icm.batch --help >/dev/null) ||
+    fail "the installed icm.batch does not import"
 fi
 
 echo "== test/consumer: find_package(ICM) from the installed package"
