@@ -28,7 +28,8 @@ Runs (each one cache file, RUN.jsonl, whose first line records how it was made):
   summary  compare --methods icm,lscm,arap on a few disks and closed meshes:
            section summary, which goes into README.md (--readme), not doc/benchmarks.md
 Section scaling renders a series written earlier by scaling.sh (--scaling-series), which
-is too slow to rerun here.
+is too slow to rerun here; section reading renders the reader's Google Benchmark figures
+written earlier by icm_kernels (--reading-figures, the command in its header line).
 
 --from FILE... reads cache files instead of running (a file without the first line is
 taken to be the run its name says: all.jsonl, icm.jsonl, ...); runs it lacks are made. --meshes replaces the mesh
@@ -49,9 +50,10 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from tables_cones import section_cones  # noqa: E402
-from tables_plan import README_SECTIONS, ROOT, SECTIONS, mesh_dirs, relative  # noqa: E402
+from tables_plan import READING_COMMAND, README_SECTIONS, ROOT, SECTIONS, mesh_dirs, relative  # noqa: E402
 from tables_render import (header, replace_section, section_border, section_disks, section_energies,  # noqa: E402
-                           section_nondisk, section_opened, section_scaling, section_scaling_short,
+                           section_nondisk, section_opened, section_reading, section_scaling,
+                           section_scaling_short,
                            section_summary, section_surface_energies, section_surfaces)
 from tables_runs import git, load, run  # noqa: E402
 
@@ -90,6 +92,7 @@ def parse_arguments():
     ap.add_argument("--nice", type=int, default=10, help="niceness of the runs (0: none)")
     ap.add_argument("--scaling-series", default=os.path.join(ROOT, "doc", "figures",
                                                              "scaling.jsonl"))
+    ap.add_argument("--reading-figures", default=os.path.join(ROOT, "doc", "figures", "reading.json"))
     ap.add_argument("--scaling-kmax", type=int, default=1,
                     help="Loop subdivision levels 0..K of the short series (default 1)")
     ap.add_argument("--commit", help="the commit to name in the headers (default: HEAD of the "
@@ -132,14 +135,17 @@ def section_body(s, a, data):
     hint = f"/usr/bin/python3 benchmark/tables.py --sections {s}"
     if a.meshes:
         hint += " --meshes " + " ".join(a.meshes)
-    if s == "scaling":
-        series = a.scaling_series
-        made = git(["log", "-1", "--format=%h %cs", "--", relative(series)], ROOT)
-        line = ("_Read from `{}`: written by `bash benchmark/scaling.sh` (METHODS as in the "
-                "table) with the code of commit {} (the file's last commit), not remeasured "
-                "here (it takes long); rerender with `{}`._").format(
-                    relative(series), made or "none: not committed", hint)
-        body = line + "\n\n" + section_scaling(series)
+    earlier = {"scaling": (a.scaling_series, "`bash benchmark/scaling.sh` (METHODS as in the table)",
+                           "it takes long", section_scaling),
+               "reading": (a.reading_figures, f"`{READING_COMMAND}`", "it needs the benchmarks built",
+                           section_reading)}
+    if s in earlier:
+        figures, command, why, render = earlier[s]
+        made = git(["log", "-1", "--format=%h %cs", "--", relative(figures)], ROOT)
+        line = ("_Read from `{}`: written by {} with the code of commit {} (the file's last "
+                "commit), not remeasured here ({}); rerender with `{}`._").format(
+                    relative(figures), command, made or "none: not committed", why, hint)
+        body = line + "\n\n" + render(figures)
     else:
         metas = [data[r][0] for r in SECTIONS[s]]
         rendered = [relative(m["file"]) for m in metas if m.get("file")]

@@ -59,7 +59,12 @@ SECTIONS = {  # section: the runs it reads
     "disks": ["all"], "energies": ["all"], "nondisk": ["all"], "surfaces": ["all", "icm"],
     "surface-energies": ["senergies"], "opened": ["opened"], "border": ["all", "border"],
     "scaling": [], "scaling-short": ["scaling"], "cones": ["cones"], "summary": ["summary"],
+    "reading": [],
 }
+# The command that writes the figures of section reading (run from the repository's root).
+READING_COMMAND = ("build/benchmark/icm_kernels --benchmark_filter=read_triangle_mesh "
+                   "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
+                   "--benchmark_out=doc/figures/reading.json --benchmark_out_format=json")
 REGISTRY_METRICS = ["icm_free_boundary", "icm_vertex_scaling", "icm_inversive_distance",
                     "icm_circle_packing"]
 CGAL = ["lscm", "arap", "dcm", "dac", "mvc"]

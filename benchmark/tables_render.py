@@ -3,6 +3,7 @@ reads (tables_plan.SECTIONS), and the line above it that says how they were meas
 The section cones, which also draws a figure, is in tables_cones.py.
 """
 
+import json
 import math
 
 import nondisk_table  # the table of surfaces that are not disks
@@ -209,6 +210,28 @@ def section_scaling_short(data):
 def section_scaling(series):
     rows = plot_scaling.load(series)
     return plot_scaling.table(rows).rstrip("\n")
+
+
+def section_reading(figures):
+    """The reader's figures (BM_read_triangle_mesh of benchmark/kernels.cpp, Google
+    Benchmark's JSON): per file, its faces, the triangles read and the median wall and CPU
+    times of the repetitions, against the first file's."""
+    with open(figures, encoding="utf-8") as f:
+        report = json.load(f)
+    medians = [b for b in report["benchmarks"] if b.get("aggregate_name") == "median"]
+    context = report["context"]
+    out = [f'{context["num_cpus"]} CPUs at {context["mhz_per_cpu"]} MHz, {context["date"][:10]}, '
+           f'median of {medians[0]["repetitions"] if medians else 0} reads each.', "",
+           "| file | faces in the file | triangles | wall s | CPU s | wall ÷ the first |",
+           "|---|---|---|---|---|---|"]
+    first = medians[0]["real_time"] if medians else None
+    for b in medians:
+        scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b["time_unit"]]
+        out.append("| " + " | ".join([
+            b.get("label", b["name"]), integer(round(b["file_faces"])), integer(round(b["faces"])),
+            sec(b["real_time"] * scale), sec(b["cpu_time"] * scale),
+            num(b["real_time"] / first, 2)]) + " |")
+    return "\n".join(out)
 
 
 def section_summary(data):
