@@ -11,7 +11,6 @@
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/Status.h>
 
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -81,22 +80,6 @@ inline void put_little_endian(std::ostream& os, std::uint32_t x)
 inline void put_little_endian(std::ostream& os, float x)
 {
   put_little_endian(os, float_bits(x));
-}
-
-/// Writes `x` as text so that reading it back as a float gives the same float: the shortest
-/// such form where the standard library has it (std::to_chars), otherwise 9 significant
-/// digits in the stream's locale.
-inline void put_exact_float(std::ostream& os, float x)
-{
-#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
-  char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), x);
-  os.write(buffer, r.ptr - buffer);
-#else
-  const std::streamsize old_precision = os.precision(9);
-  os << x;
-  os.precision(old_precision);
-#endif
 }
 
 } // namespace internal

@@ -18,8 +18,11 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <ostream>
 #include <locale>
 #include <sstream>
 #include <string>
@@ -59,6 +62,23 @@ constexpr double log_area_ratio_clamp = 50.;
 } // namespace IO
 
 namespace internal {
+
+/// Writes `x` so that reading it back as a `Real` gives the same number: the shortest such
+/// form where the standard library has it (std::to_chars, independent of the stream's
+/// locale), otherwise max_digits10 significant digits in the stream's locale.
+template <class Real>
+void put_exact_number(std::ostream& os, Real x)
+{
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  char buffer[32];
+  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), x);
+  os.write(buffer, r.ptr - buffer);
+#else
+  const std::streamsize old_precision = os.precision(std::numeric_limits<Real>::max_digits10);
+  os << x;
+  os.precision(old_precision);
+#endif
+}
 
 /// Why a UV that is not finite overflowed, when it is infinite rather than NaN: parameterizers
 /// lay a mesh out at unit size and scale the UVs back to the mesh's (each chart's UV area is

@@ -9,33 +9,12 @@
 #include <ICM/IO/Uv_mesh.h>
 #include <ICM/internal/Atomic_file.h>
 
-#include <charconv>
 #include <cstddef>
 #include <ios>
 #include <ostream>
 #include <string>
 
 namespace ICM {
-namespace internal {
-
-/// Writes `x` so that reading it back gives the same double: the shortest such form where
-/// the standard library has it (std::to_chars), otherwise 17 significant digits.
-/// Independent of the stream's locale with to_chars; the fallback uses the stream's locale.
-inline void put_exact_double(std::ostream& os, double x)
-{
-#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
-  char buffer[32];
-  const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), x);
-  os.write(buffer, r.ptr - buffer);
-#else
-  const std::streamsize old_precision = os.precision(17);
-  os << x;
-  os.precision(old_precision);
-#endif
-}
-
-} // namespace internal
-
 namespace IO {
 
 /// Writes `m` to `os` as OBJ: `v x y z`, `vt u v` and `f a/ta b/tb c/tc` lines (1-based),
@@ -44,7 +23,7 @@ namespace IO {
 /// \pre `m` is valid (`is_valid_uv_mesh()`).
 inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
 {
-  using internal::put_exact_double;
+  using internal::put_exact_number;
   os << "# written by ICM\n";
   os << "# " << m.positions.size() << " vertices, " << m.uvs.size() << " texture coordinates, " << m.number_of_faces()
      << " faces\n";
@@ -52,20 +31,20 @@ inline bool write_uv_obj(std::ostream& os, const Uv_mesh& m)
   {
     const auto& p = m.positions[i];
     os << "v ";
-    put_exact_double(os, p[0]);
+    put_exact_number(os, p[0]);
     os << ' ';
-    put_exact_double(os, p[1]);
+    put_exact_number(os, p[1]);
     os << ' ';
-    put_exact_double(os, p[2]);
+    put_exact_number(os, p[2]);
     os << '\n';
   }
   for(std::size_t i = 0; i < m.uvs.size() && os; ++i)
   {
     const auto& t = m.uvs[i];
     os << "vt ";
-    put_exact_double(os, t[0]);
+    put_exact_number(os, t[0]);
     os << ' ';
-    put_exact_double(os, t[1]);
+    put_exact_number(os, t[1]);
     os << '\n';
   }
   for(std::size_t f = 0; f < m.number_of_faces() && os; ++f)

@@ -40,7 +40,7 @@ inline void put_ply_ascii_body(std::ostream& os, const IO::Uv_mesh& m)
     const auto& p = m.positions[i];
     for(int k = 0; k < 3; ++k)
     {
-      put_exact_float(os, static_cast<float>(p[k]));
+      put_exact_number(os, static_cast<float>(p[k]));
       os << (k < 2 ? ' ' : '\n');
     }
   }
@@ -52,9 +52,9 @@ inline void put_ply_ascii_body(std::ostream& os, const IO::Uv_mesh& m)
     {
       const auto& t = m.uvs[m.face_uvs[f][k]];
       os << ' ';
-      put_exact_float(os, static_cast<float>(t[0]));
+      put_exact_number(os, static_cast<float>(t[0]));
       os << ' ';
-      put_exact_float(os, static_cast<float>(t[1]));
+      put_exact_number(os, static_cast<float>(t[1]));
     }
     os << '\n';
   }
