@@ -1,5 +1,5 @@
-// icm_param's batches (icm_param_batch.h): a process per mesh, at most -j at once, a row of
-// OUTDIR/summary.jsonl per mesh.
+// icm_param's batches (icm_param_batch.h): a process per mesh, at most -j at
+// once, a row of OUTDIR/summary.jsonl per mesh.
 
 #include "icm_param_batch.h"
 
@@ -15,14 +15,15 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #ifndef _WIN32
+#include <child_process.h>
+
 #include <csignal>
-#include <fcntl.h>
 #include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #endif
 
@@ -91,8 +92,9 @@ struct Item
   Json row; ///< null until it ran; the earlier run's when --resume skips it
 };
 
-/// The rows of an earlier summary.jsonl by input (the last row of each: a resumed batch
-/// appends). A line a killed batch cut short is not JSON and is ignored.
+/// The rows of an earlier summary.jsonl by input (the last row of each: a
+/// resumed batch appends). A line a killed batch cut short is not JSON and is
+/// ignored.
 std::map<std::string, Json> earlier_rows(const fs::path& summary)
 {
   std::map<std::string, Json> rows;
@@ -109,7 +111,8 @@ std::map<std::string, Json> earlier_rows(const fs::path& summary)
   return rows;
 }
 
-/// The string under `key`, or empty: an earlier summary is a file anyone may have edited.
+/// The string under `key`, or empty: an earlier summary is a file anyone may
+/// have edited.
 std::string string_at(const Json& row, const char* key)
 {
   const auto value = row.find(key);
@@ -122,7 +125,8 @@ bool was_done(const Json& row, const std::string& output)
   return string_at(row, "status") == "ok" && string_at(row, "output") == output && fs::is_regular_file(output, ec);
 }
 
-/// The row of a mesh: what the batch knows, then the child's figures (its --json line).
+/// The row of a mesh: what the batch knows, then the child's figures (its
+/// --json line).
 Json make_row(const Item& item, bool ok, const std::string& error, double seconds, const Json& figures)
 {
   Json row;
@@ -175,16 +179,17 @@ bool write_summary(const fs::path& summary, const std::vector<Item>& items, std:
 /// A child process running one item.
 struct Child
 {
-  pid_t pid = -1;
+  icm_tools::Child_process process;
   std::size_t item = 0;
   Clock::time_point start;
   fs::path out, err; // its captured stdout and stderr
   bool timed_out = false;
 };
 
-/// Starts this executable on `input`: `argv` with `--batch-item INPUT` added, its stdout and
-/// stderr into files.
-pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out, const fs::path& err)
+/// Starts this executable on `input`: `argv` with `--batch-item INPUT` added,
+/// its stdout and stderr into the child's files; false (errno says why) when no
+/// process started.
+bool spawn(Child& child, int argc, char** argv, const std::string& input)
 {
   std::vector<std::string> words(argv, argv + argc);
   words.push_back("--batch-item");
@@ -193,20 +198,22 @@ pid_t spawn(int argc, char** argv, const std::string& input, const fs::path& out
   for(std::string& word : words)
     child_argv.push_back(word.data());
   child_argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if(pid != 0)
-    return pid;
-  // In the child: only async-signal-safe calls until exec.
-  const int out_fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  if(out_fd < 0 || err_fd < 0 || ::dup2(out_fd, 1) < 0 || ::dup2(err_fd, 2) < 0)
-    ::_exit(127);
-  ::execv("/proc/self/exe", child_argv.data());
-  ::execv(argv[0], child_argv.data());
-  ::_exit(127);
+  icm_tools::Child_setup setup;
+  setup.stdout_path = child.out.string();
+  setup.stderr_path = child.err.string();
+  const char* self = argv[0];
+  const auto exec = [&child_argv, self](int) {
+    // In the child: only async-signal-safe calls until exec.
+    ::execv("/proc/self/exe", child_argv.data());
+    ::execv(self, child_argv.data());
+    return 127;
+  };
+  std::string failed_call;
+  return child.process.start(exec, setup, failed_call);
 }
 
-/// " (SIGSEGV)": the name of a signal a crash ends with, as icm.batch writes it, or empty.
+/// " (SIGSEGV)": the name of a signal a crash ends with, as icm.batch writes
+/// it, or empty.
 std::string signal_name(int signal)
 {
   for(const auto& [number, name] : {std::pair<int, const char*>{SIGSEGV, "SIGSEGV"},
@@ -221,9 +228,10 @@ std::string signal_name(int signal)
   return {};
 }
 
-/// Why a child that ended with `status` failed, or empty when it wrote its outputs; its
-/// figures (the --json line) in `figures`.
-std::string failure_of(const Child& child, int status, const Batch_options& options, Json& figures)
+/// Why a child that ended as `exit` says failed, or empty when it wrote its
+/// outputs; its figures (the --json line) in `figures`.
+std::string failure_of(const Child& child, const icm_tools::Child_exit& exit, const Batch_options& options,
+                       Json& figures)
 {
   if(child.timed_out)
   {
@@ -234,9 +242,9 @@ std::string failure_of(const Child& child, int status, const Batch_options& opti
   const std::string out = read_whole(child.out), err = read_whole(child.err);
   const Json line = Json::parse(last_line(out), nullptr, false);
   std::string reason;
-  if(WIFSIGNALED(status))
-    reason = "crashed: signal " + std::to_string(WTERMSIG(status)) + signal_name(WTERMSIG(status));
-  else if(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+  if(exit.signaled)
+    reason = "crashed: signal " + std::to_string(exit.signal) + signal_name(exit.signal);
+  else if(exit.code == 0)
   {
     if(line.is_object() && !line.contains("error"))
     {
@@ -247,14 +255,15 @@ std::string failure_of(const Child& child, int status, const Batch_options& opti
   }
   else if(line.is_object() && line.contains("error") && line["error"].is_string())
     reason = line["error"].get<std::string>();
-  else if(WIFEXITED(status) && WEXITSTATUS(status) == 127)
+  else if(exit.code == 127)
     reason = "cannot start " + std::string("/proc/self/exe");
   else
-    reason = "the process exited with status " + std::to_string(WEXITSTATUS(status)) +
+    reason = "the process exited with status " + std::to_string(exit.code) +
              (last_line(err).empty() ? "" : ": " + last_line(err));
-  // An allocation refused under the limit shows as "out of memory", or as a crash in a
-  // library that does not check: either way the limit is the likely cause.
-  if(options.max_memory_mb > 0 && (WIFSIGNALED(status) || reason.find("memory") != std::string::npos))
+  // An allocation refused under the limit shows as "out of memory", or as a
+  // crash in a library that does not check: either way the limit is the likely
+  // cause.
+  if(options.max_memory_mb > 0 && (exit.signaled || reason.find("memory") != std::string::npos))
   {
     std::ostringstream text;
     text << reason << " (--max-memory " << options.max_memory_mb << " MB)";
@@ -263,8 +272,8 @@ std::string failure_of(const Child& child, int status, const Batch_options& opti
   return reason;
 }
 
-/// The progress line of a finished mesh: the count, its outcome, elapsed time and the time
-/// left at the pace so far.
+/// The progress line of a finished mesh: the count, its outcome, elapsed time
+/// and the time left at the pace so far.
 void print_progress(std::size_t done, std::size_t to_run, const Item& item, double elapsed)
 {
   const bool ok = item.row.value("status", "") == "ok";
@@ -278,6 +287,140 @@ void print_progress(std::size_t done, std::size_t to_run, const Item& item, doub
   if(done < to_run)
     std::cerr << ", ETA " << duration_text(elapsed / double(done) * double(to_run - done));
   std::cerr << std::endl;
+}
+
+/// The batch's items, once each in input order, those --resume finds done with
+/// their earlier row; returns the indices of the items to run.
+std::vector<std::size_t> plan_items(const Batch_options& options, const fs::path& summary, std::vector<Item>& items)
+{
+  const std::map<std::string, Json> earlier = options.resume ? earlier_rows(summary) : std::map<std::string, Json>();
+  std::vector<std::size_t> to_run;
+  std::map<std::string, bool> seen;
+  for(const std::string& input : options.inputs)
+  {
+    if(seen[input]) // an input listed twice runs once
+      continue;
+    seen[input] = true;
+    Item item;
+    item.input = input;
+    item.output = batch_output_path(options.output_dir, input, options.format);
+    if(const auto row = earlier.find(input); row != earlier.end() && was_done(row->second, item.output))
+      item.row = row->second;
+    else
+      to_run.push_back(items.size());
+    items.push_back(std::move(item));
+  }
+  return to_run;
+}
+
+/// The items to run, at most -j children at once, each finished one's row in
+/// the journal as soon as it ends.
+class Batch_run
+{
+public:
+  Batch_run(const Batch_options& options, int argc, char** argv, std::vector<Item>& items, std::ofstream& journal,
+            const fs::path& scratch, Clock::time_point start)
+    : options_(options), argc_(argc), argv_(argv), items_(items), journal_(journal), scratch_(scratch), start_(start)
+  {}
+
+  /// Runs the items `to_run`; returns how many failed.
+  std::size_t run(const std::vector<std::size_t>& to_run)
+  {
+    to_run_ = &to_run;
+    const std::size_t jobs = static_cast<std::size_t>(std::max(1, options_.jobs));
+    while(next_ < to_run.size() || !running_.empty())
+    {
+      while(running_.size() < jobs && next_ < to_run.size())
+        start_child(to_run[next_++]);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      reap_children();
+    }
+    return failed_;
+  }
+
+private:
+  const Batch_options& options_;
+  int argc_;
+  char** argv_;
+  std::vector<Item>& items_;
+  std::ofstream& journal_;
+  fs::path scratch_;
+  Clock::time_point start_;
+  const std::vector<std::size_t>* to_run_ = nullptr;
+  std::vector<Child> running_;
+  std::size_t next_ = 0, done_ = 0, failed_ = 0;
+
+  void start_child(std::size_t index)
+  {
+    Child child;
+    child.item = index;
+    child.out = scratch_ / (std::to_string(index) + ".out");
+    child.err = scratch_ / (std::to_string(index) + ".err");
+    child.start = Clock::now();
+    if(spawn(child, argc_, argv_, items_[index].input))
+    {
+      running_.push_back(child);
+      return;
+    }
+    Item& item = items_[index];
+    item.row = make_row(item, false, std::string("cannot start a process: ") + std::strerror(errno), 0, {});
+    journal_ << dump(item.row) << "\n" << std::flush;
+    ++done_, ++failed_;
+  }
+
+  /// The children that ended, or ran past --timeout (then killed), finished.
+  void reap_children()
+  {
+    for(auto child = running_.begin(); child != running_.end();)
+    {
+      std::optional<icm_tools::Child_exit> exit = child->process.try_wait();
+      if(!exit && options_.timeout > 0 && seconds_since(child->start) > options_.timeout)
+      {
+        child->timed_out = true;
+        exit = child->process.kill();
+      }
+      if(!exit)
+      {
+        ++child;
+        continue;
+      }
+      finish(*child, *exit);
+      child = running_.erase(child);
+    }
+  }
+
+  void finish(const Child& child, const icm_tools::Child_exit& exit)
+  {
+    Item& item = items_[child.item];
+    Json figures;
+    const std::string reason = failure_of(child, exit, options_, figures);
+    item.row = make_row(item, reason.empty(), reason, seconds_since(child.start), figures);
+    journal_ << dump(item.row) << "\n" << std::flush;
+    if(options_.json)
+      std::cout << dump(item.row) << std::endl;
+    ++done_;
+    failed_ += reason.empty() ? 0 : 1;
+    if(!options_.quiet)
+      print_progress(done_, to_run_->size(), item, seconds_since(start_));
+    std::error_code ec;
+    fs::remove(child.out, ec);
+    fs::remove(child.err, ec);
+  }
+};
+
+/// The batch's last line: how many meshes were written, skipped, failed, and
+/// the time.
+void print_totals(const Batch_options& options, std::size_t items, std::size_t skipped, std::size_t failed,
+                  const fs::path& summary, Clock::time_point start)
+{
+  if(options.quiet && failed == 0)
+    return;
+  std::cerr << "icm_param: " << items - failed << " of " << items << " meshes written to " << options.output_dir;
+  if(skipped > 0)
+    std::cerr << " (" << skipped << " done before, skipped)";
+  if(failed > 0)
+    std::cerr << ", " << failed << " failed (" << summary.string() << ")";
+  std::cerr << ", " << seconds_text(seconds_since(start)) << "\n";
 }
 
 #endif // _WIN32
@@ -358,25 +501,8 @@ int run_batch(const Batch_options& options, int argc, char** argv)
 #else
   const Clock::time_point start = Clock::now();
   const fs::path summary = fs::path(options.output_dir) / "summary.jsonl";
-  const std::map<std::string, Json> earlier = options.resume ? earlier_rows(summary) : std::map<std::string, Json>();
-
   std::vector<Item> items;
-  std::vector<std::size_t> to_run;
-  std::map<std::string, bool> seen;
-  for(const std::string& input : options.inputs)
-  {
-    if(seen[input]) // an input listed twice runs once
-      continue;
-    seen[input] = true;
-    Item item;
-    item.input = input;
-    item.output = batch_output_path(options.output_dir, input, options.format);
-    if(const auto row = earlier.find(input); row != earlier.end() && was_done(row->second, item.output))
-      item.row = row->second;
-    else
-      to_run.push_back(items.size());
-    items.push_back(std::move(item));
-  }
+  const std::vector<std::size_t> to_run = plan_items(options, summary, items);
 
   std::ofstream journal(summary, options.resume ? std::ios::app : std::ios::trunc);
   if(!journal)
@@ -393,64 +519,12 @@ int run_batch(const Batch_options& options, int argc, char** argv)
     return 1;
   }
 
-  // The children inherit one BLAS thread each, whatever -j: several share the cores, and a
-  // supernodal factorization's sums depend on the thread count, so that the outputs of -j 1
-  // and -j 2 are the same bytes (as icm.batch's).
+  // The children inherit one BLAS thread each, whatever -j: several share the
+  // cores, and a supernodal factorization's sums depend on the thread count, so
+  // that the outputs of -j 1 and -j 2 are the same bytes (as icm.batch's).
   ::setenv("OPENBLAS_NUM_THREADS", "1", 1);
   ::setenv("OMP_NUM_THREADS", "1", 1);
-  const std::size_t jobs = static_cast<std::size_t>(std::max(1, options.jobs));
-  std::vector<Child> running;
-  std::size_t next = 0, done = 0, failed = 0;
-  while(next < to_run.size() || !running.empty())
-  {
-    while(running.size() < jobs && next < to_run.size())
-    {
-      Child child;
-      child.item = to_run[next++];
-      child.out = scratch / (std::to_string(child.item) + ".out");
-      child.err = scratch / (std::to_string(child.item) + ".err");
-      child.start = Clock::now();
-      child.pid = spawn(argc, argv, items[child.item].input, child.out, child.err);
-      if(child.pid < 0)
-      {
-        Item& item = items[child.item];
-        item.row = make_row(item, false, std::string("cannot start a process: ") + std::strerror(errno), 0, {});
-        journal << dump(item.row) << "\n" << std::flush;
-        ++done, ++failed;
-        continue;
-      }
-      running.push_back(child);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    for(auto child = running.begin(); child != running.end();)
-    {
-      int status = 0;
-      if(::waitpid(child->pid, &status, WNOHANG) != child->pid)
-      {
-        if(options.timeout > 0 && !child->timed_out && seconds_since(child->start) > options.timeout)
-        {
-          ::kill(child->pid, SIGKILL);
-          child->timed_out = true;
-        }
-        ++child;
-        continue;
-      }
-      Item& item = items[child->item];
-      Json figures;
-      const std::string reason = failure_of(*child, status, options, figures);
-      item.row = make_row(item, reason.empty(), reason, seconds_since(child->start), figures);
-      journal << dump(item.row) << "\n" << std::flush;
-      if(options.json)
-        std::cout << dump(item.row) << std::endl;
-      ++done;
-      failed += reason.empty() ? 0 : 1;
-      if(!options.quiet)
-        print_progress(done, to_run.size(), item, seconds_since(start));
-      fs::remove(child->out, ec);
-      fs::remove(child->err, ec);
-      child = running.erase(child);
-    }
-  }
+  const std::size_t failed = Batch_run(options, argc, argv, items, journal, scratch, start).run(to_run);
   journal.close();
   fs::remove_all(scratch, ec);
 
@@ -460,17 +534,7 @@ int run_batch(const Batch_options& options, int argc, char** argv)
     std::cerr << "icm_param: " << error << "\n";
     return 1;
   }
-  const std::size_t skipped = items.size() - to_run.size();
-  if(!options.quiet || failed > 0)
-  {
-    std::cerr << "icm_param: " << items.size() - failed << " of " << items.size() << " meshes written to "
-              << options.output_dir;
-    if(skipped > 0)
-      std::cerr << " (" << skipped << " done before, skipped)";
-    if(failed > 0)
-      std::cerr << ", " << failed << " failed (" << summary.string() << ")";
-    std::cerr << ", " << seconds_text(seconds_since(start)) << "\n";
-  }
+  print_totals(options, items.size(), items.size() - to_run.size(), failed, summary, start);
   return failed == 0 ? 0 : 1;
 #endif
 }

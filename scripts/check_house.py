@@ -8,7 +8,7 @@
    every `#include <ICM/...>` must name an existing header of the same stage or of a stage
    above it in the table. A header of the table headed "moved" is a forwarding header: it
    may hold nothing but comments, the CGAL deprecation warning and the include of its new path.
-2. Sizes. No source file (C++ or Python) under include/, examples/, benchmark/ or python/ is
+2. Sizes. No source file (C++ or Python) under include/, examples/, benchmark/, python/ or tools/ is
    over MAX_FILE_LINES lines, and no function over MAX_FUNCTION_LINES, counted from the line
    of its opening brace (C++) or of its `def` (Python) to the line that ends it, comments
    included. C++ functions are found by matching braces after comments and literals are
@@ -30,7 +30,7 @@ import tempfile
 
 MAX_FILE_LINES = 600
 MAX_FUNCTION_LINES = 100
-SIZE_FOLDERS = ("include", "examples", "benchmark", "python")
+SIZE_FOLDERS = ("include", "examples", "benchmark", "python", "tools")
 CPP_SUFFIXES = (".h", ".hpp", ".cpp")
 
 
