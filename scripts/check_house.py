@@ -219,7 +219,7 @@ def main():
         print(p, file=sys.stderr)
     if problems:
         sys.exit(f"check_house: {len(problems)} problems")
-    print(f"check_house: {headers} headers, every include points up the stages; {sources} sources within "
+    print(f"check_house: {headers} headers, every include points to its own stage or an earlier one; {sources} sources within "
           f"{MAX_FILE_LINES} lines and functions within {MAX_FUNCTION_LINES}")
 
 
