@@ -155,7 +155,7 @@ def plot(rows, path, title):
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
     whole = any(r.get("method") in (BFF, WHOLE) for r in rows)
-    panels = [("seconds", "wall time (s): parameterize(); " + BFF + ", " + WHOLE + ": whole process"
+    panels = [("seconds", f"wall time (s); {BFF}, {WHOLE}:\nwhole process, others: parameterize()"
                if whole else "wall time of parameterize() (s)"),
               ("peak_rss_mb", "peak resident memory (MB)")]
     style = {"marker": "o"} if len(meshes_of(rows)) == 1 else {"marker": "o", "ls": "none"}
