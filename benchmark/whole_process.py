@@ -8,7 +8,7 @@ Runs COMMAND (a parameterizer's command line reading MESH.obj) and prints one JS
 the fields of `compare --json`'s rows that apply: mesh, vertices, faces (counted in MESH.obj),
 method, status, seconds (wall time from the start of the process to its end, reading and
 writing included; the median over the runs) and peak_rss_mb (the process's maximum resident
-set, from wait4's rusage; the largest over the runs). benchmark/scaling.sh appends these rows
+set as /usr/bin/time -f %M reports it, else from wait4; the largest over the runs). benchmark/scaling.sh appends these rows
 beside compare's, for BFF's command line (method bff) and icm_param's (icm_param_whole).
 
   --runs N       timed runs, median reported (default: 3 if the first takes < 2 s, else 1,
@@ -27,6 +27,7 @@ code is 0 when the row was written, 2 on a wrong command line.
 import argparse
 import json
 import os
+import shutil
 import signal
 import statistics
 import subprocess
@@ -74,13 +75,44 @@ def last_json(path):
     return found if isinstance(found, dict) else None
 
 
+# GNU time measures the peak memory: a child forked from this interpreter and then exec'd
+# would count the interpreter's pages it held before the exec in its peak (about 12 MB),
+# /usr/bin/time's about 1 MB. Without it, the peak is wait4's, with that floor.
+GNU_TIME = "/usr/bin/time"
+
+
+def gnu_time_report(path):
+    """(peak kB, signal or None) from GNU time's -o file: its last line is %M, a line before
+    it says 'Command terminated by signal N' when the command was killed by one."""
+    try:
+        with open(path, errors="replace") as fh:
+            lines = [ln.strip() for ln in fh if ln.strip()]
+    except OSError:
+        return None, None
+    sig = None
+    for ln in lines[:-1]:
+        if ln.startswith("Command terminated by signal"):
+            sig = int(ln.split()[-1])
+    try:
+        return float(lines[-1]), sig
+    except (IndexError, ValueError):
+        return None, sig
+
+
 def run_once(cmd, time_limit, tmp):
     """One run: (status, seconds, peak MB, stdout file)."""
     out_path, err_path = os.path.join(tmp, "stdout"), os.path.join(tmp, "stderr")
+    time_path = os.path.join(tmp, "time")
+    if os.path.exists(time_path):
+        os.remove(time_path)
+    timer_cmd = [GNU_TIME, "-f", "%M", "-o", time_path] if os.access(GNU_TIME, os.X_OK) else []
+    if timer_cmd and not shutil.which(cmd[0]):
+        return "failed: cannot start: no such program", None, None, out_path
     with open(out_path, "wb") as out, open(err_path, "wb") as err:
         start = time.monotonic()
-        try:
-            proc = subprocess.Popen(cmd, stdout=out, stderr=err, stdin=subprocess.DEVNULL)
+        try:  # its own session, so that a timeout kills GNU time and the command together
+            proc = subprocess.Popen(timer_cmd + cmd, stdout=out, stderr=err, stdin=subprocess.DEVNULL,
+                                    start_new_session=True)
         except OSError as e:
             return f"failed: cannot start: {e.strerror}", None, None, out_path
         timed_out = threading.Event()
@@ -88,7 +120,7 @@ def run_once(cmd, time_limit, tmp):
         def kill():
             timed_out.set()
             try:
-                os.kill(proc.pid, signal.SIGKILL)
+                os.killpg(proc.pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
 
@@ -102,10 +134,16 @@ def run_once(cmd, time_limit, tmp):
         proc.returncode = 0  # reaped here; keeps Popen from waiting again
     peak = usage.ru_maxrss / 1024.0  # kB on Linux
     if timed_out.is_set():
-        return "timeout", None, peak, out_path
-    if os.WIFSIGNALED(wstatus):
-        return f"crashed (signal {os.WTERMSIG(wstatus)})", seconds, peak, out_path
-    code = os.WEXITSTATUS(wstatus)
+        return "timeout", None, None, out_path
+    sig = os.WTERMSIG(wstatus) if os.WIFSIGNALED(wstatus) else None
+    code = os.WEXITSTATUS(wstatus) if sig is None else None
+    if timer_cmd:
+        peak_kb, sig = gnu_time_report(time_path)
+        peak = peak_kb / 1024.0 if peak_kb is not None else None
+        if sig is not None:
+            code = None
+    if sig is not None:
+        return f"crashed (signal {sig})", seconds, peak, out_path
     if code != 0:
         why = last_line(err_path) or last_line(out_path)
         return f"failed (exit code {code})" + (f": {why}" if why else ""), seconds, peak, out_path
