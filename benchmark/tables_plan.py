@@ -64,7 +64,7 @@ SECTIONS = {  # section: the runs it reads
 }
 # The commands that write the series of sections scaling-bff and bff-disks (scaling.sh with
 # BFF's command line beside ICM; run from the repository's root, BFF built apart).
-SCALING_BFF_COMMAND = "BFF=.../bff-command-line KMAX=3 NAME=scaling_bff bash benchmark/scaling.sh"
+SCALING_BFF_COMMAND = "BFF=.../bff-command-line KMAX=4 NAME=scaling_bff bash benchmark/scaling.sh"
 BFF_DISKS_COMMAND = ('MESHES="nefertiti.off mesh_with_border.off three_peaks.off mushroom.off '
                      'cylinder_locally_refined.off lion-head.off mannequin-devil.off camelhead.off '
                      'horse.obj" (their paths) RUNS=5 BFF=.../bff-command-line NAME=bff_disks '
