@@ -28,7 +28,8 @@ Runs (each one cache file, RUN.jsonl, whose first line records how it was made):
   summary  compare --methods icm,lscm,arap on a few disks and closed meshes:
            section summary, which goes into README.md (--readme), not doc/benchmarks.md
 Section scaling renders a series written earlier by scaling.sh (--scaling-series), which
-is too slow to rerun here; section reading renders the reader's Google Benchmark figures
+is too slow to rerun here, and so do sections scaling-bff and bff-disks (--scaling-bff-series,
+--bff-disks-series: scaling.sh with BFF=, ICM and BFF side by side; BFF is built apart); section reading renders the reader's Google Benchmark figures
 written earlier by icm_kernels (--reading-figures, the command in its header line).
 
 --from FILE... reads cache files instead of running (a file without the first line is
@@ -50,7 +51,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from tables_cones import section_cones  # noqa: E402
-from tables_plan import READING_COMMAND, README_SECTIONS, ROOT, SECTIONS, mesh_dirs, relative  # noqa: E402
+from tables_plan import (BFF_DISKS_COMMAND, READING_COMMAND, README_SECTIONS, ROOT, SCALING_BFF_COMMAND,  # noqa: E402
+                         SECTIONS, mesh_dirs, relative)
 from tables_render import (header, replace_section, section_border, section_disks, section_energies,  # noqa: E402
                            section_nondisk, section_opened, section_reading, section_scaling,
                            section_scaling_short,
@@ -92,6 +94,9 @@ def parse_arguments():
     ap.add_argument("--nice", type=int, default=10, help="niceness of the runs (0: none)")
     ap.add_argument("--scaling-series", default=os.path.join(ROOT, "doc", "figures",
                                                              "scaling.jsonl"))
+    figures = os.path.join(ROOT, "doc", "figures")
+    ap.add_argument("--scaling-bff-series", default=os.path.join(figures, "scaling_bff.jsonl"))
+    ap.add_argument("--bff-disks-series", default=os.path.join(figures, "bff_disks.jsonl"))
     ap.add_argument("--reading-figures", default=os.path.join(ROOT, "doc", "figures", "reading.json"))
     ap.add_argument("--scaling-kmax", type=int, default=1,
                     help="Loop subdivision levels 0..K of the short series (default 1)")
@@ -137,6 +142,9 @@ def section_body(s, a, data):
         hint += " --meshes " + " ".join(a.meshes)
     earlier = {"scaling": (a.scaling_series, "`bash benchmark/scaling.sh` (METHODS as in the table)",
                            "it takes long", section_scaling),
+               "scaling-bff": (a.scaling_bff_series, f"`{SCALING_BFF_COMMAND}`", "it takes long and "
+                               "needs BFF", section_scaling),
+               "bff-disks": (a.bff_disks_series, f"`{BFF_DISKS_COMMAND}`", "it needs BFF", section_scaling),
                "reading": (a.reading_figures, f"`{READING_COMMAND}`", "it needs the benchmarks built",
                            section_reading)}
     if s in earlier:

@@ -58,9 +58,17 @@ README_SECTIONS = ["summary"]
 SECTIONS = {  # section: the runs it reads
     "disks": ["all"], "energies": ["all"], "nondisk": ["all"], "surfaces": ["all", "icm"],
     "surface-energies": ["senergies"], "opened": ["opened"], "border": ["all", "border"],
-    "scaling": [], "scaling-short": ["scaling"], "cones": ["cones"], "summary": ["summary"],
+    "scaling": [], "scaling-bff": [], "bff-disks": [], "scaling-short": ["scaling"], "cones": ["cones"],
+    "summary": ["summary"],
     "reading": [],
 }
+# The commands that write the series of sections scaling-bff and bff-disks (scaling.sh with
+# BFF's command line beside ICM; run from the repository's root, BFF built apart).
+SCALING_BFF_COMMAND = "BFF=.../bff-command-line KMAX=3 NAME=scaling_bff bash benchmark/scaling.sh"
+BFF_DISKS_COMMAND = ('MESHES="nefertiti.off mesh_with_border.off three_peaks.off mushroom.off '
+                     'cylinder_locally_refined.off lion-head.off mannequin-devil.off camelhead.off '
+                     'horse.obj" (their paths) RUNS=5 BFF=.../bff-command-line NAME=bff_disks '
+                     'bash benchmark/scaling.sh build/benchmark/compare doc/figures')
 # The command that writes the figures of section reading (run from the repository's root).
 READING_COMMAND = ("build/benchmark/icm_kernels --benchmark_filter=read_triangle_mesh "
                    "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "

@@ -3,7 +3,7 @@
 // wall time, peak memory, flipped faces and quasi-conformal ratios, as Markdown or JSON lines.
 //
 //   compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c] [--subdivide K]
-//           [--open] [--svg-panels FILE] [--quiet] MESH...
+//           [--open] [--svg-panels FILE] [--write-mesh FILE] [--quiet] MESH...
 //
 // A topological disk goes through CGAL's parameterize() with every method of the registry
 // (ICM's rows, in each metric and with each energy, show the report's optimum time and the
@@ -72,6 +72,11 @@ bool run_mesh(const std::string& path, const Options& opt, const std::vector<std
   if(!load_mesh(path, opt, mesh, error))
   {
     std::cerr << "compare: " << path << ": " << error << "\n";
+    return false;
+  }
+  if(!opt.write_mesh.empty() && !write_mesh(opt.write_mesh, mesh, error))
+  {
+    std::cerr << "compare: --write-mesh " << opt.write_mesh << ": " << error << "\n";
     return false;
   }
   Row base;

@@ -73,6 +73,23 @@ bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::str
   return true;
 }
 
+bool write_mesh(const std::string& path, const Mesh& mesh, std::string& error)
+{
+  bool ok = false;
+  try
+  {
+    ok = CGAL::IO::write_polygon_mesh(path, mesh, CGAL::parameters::stream_precision(17));
+  }
+  catch(const std::exception& e)
+  {
+    error = e.what();
+    return false;
+  }
+  if(!ok)
+    error = "cannot write the mesh to this file";
+  return ok;
+}
+
 Topology topology_of(Mesh& mesh)
 {
   Topology t;

@@ -22,6 +22,11 @@ void open_at_first_vertex(Mesh& mesh);
 // with a reason.
 bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::string& error);
 
+// Writes the mesh to `path` (.obj, .off or .ply by its extension; coordinates with 17
+// significant digits, so that a reader gets the same points); on failure returns false with
+// a reason.
+bool write_mesh(const std::string& path, const Mesh& mesh, std::string& error);
+
 // Components, boundary loops and Euler characteristic chi = V - E + F = 2C - 2G - B.
 struct Topology
 {

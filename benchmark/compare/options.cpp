@@ -19,7 +19,7 @@ namespace {
 
 const char* usage_text = "usage: compare [--json] [--runs N] [--time-limit SECONDS] [--methods a,b,c]\n"
                          "               [--subdivide K] [--open] [--svg-panels FILE] [--json-file FILE]\n"
-                         "               [--quiet] MESH...\n"
+                         "               [--write-mesh FILE] [--quiet] MESH...\n"
                          "\n"
                          "Runs each parameterization method on each mesh (OFF/OBJ/PLY) and prints the paper's\n"
                          "Table I plus time, memory and flips as Markdown (or JSON lines). A disk gets every\n"
@@ -47,6 +47,9 @@ const char* usage_text = "usage: compare [--json] [--runs N] [--time-limit SECON
                          "  --json-file FILE   also write the JSON lines to FILE (with the Markdown on stdout)\n"
                          "  --svg-panels FILE  write the UV layouts of icm_free_boundary, lscm and arap for the\n"
                          "                     first mesh side by side to FILE (faces coloured by log area ratio)\n"
+                         "  --write-mesh FILE  write the mesh as the methods get it (triangulated, after\n"
+                         "                     --subdivide and --open) to FILE (.obj, .off or .ply) before\n"
+                         "                     they run; one MESH only\n"
                          "  --quiet            no progress lines on stderr\n";
 
 [[noreturn]] void usage_error(const std::string& what)
@@ -102,7 +105,7 @@ struct Option_texts
 {
   std::string runs, time_limit, subdivide, methods;
   CLI::Option *runs_option = nullptr, *time_limit_option = nullptr, *subdivide_option = nullptr,
-              *methods_option = nullptr;
+              *methods_option = nullptr, *write_mesh_option = nullptr;
 };
 
 void add_options(CLI::App& app, Options& o, Option_texts& texts)
@@ -120,6 +123,7 @@ void add_options(CLI::App& app, Options& o, Option_texts& texts)
   texts.methods_option = app.add_option("--methods", texts.methods);
   app.add_option("--svg-panels", o.svg_panels);
   app.add_option("--json-file", o.json_file);
+  texts.write_mesh_option = app.add_option("--write-mesh", o.write_mesh);
   app.add_option("MESH", o.meshes)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
@@ -212,6 +216,21 @@ void check_methods(const std::vector<std::string>& methods, const std::vector<st
   }
 }
 
+// --write-mesh: a file name with an extension CGAL writes, and one mesh to write.
+void check_write_mesh(const Option_texts& texts, const Options& o)
+{
+  if(texts.write_mesh_option->count() == 0)
+    return;
+  const std::string& file = o.write_mesh;
+  auto ends_with = [&](const std::string& ext) {
+    return file.size() > ext.size() && file.compare(file.size() - ext.size(), ext.size(), ext) == 0;
+  };
+  if(!ends_with(".obj") && !ends_with(".off") && !ends_with(".ply"))
+    usage_error("--write-mesh needs a file name ending in .obj, .off or .ply, not '" + file + "'");
+  if(o.meshes.size() != 1)
+    usage_error("--write-mesh writes one mesh; " + std::to_string(o.meshes.size()) + " meshes given");
+}
+
 } // namespace
 
 Options parse_options(int argc, char** argv, const std::vector<std::string>& known_methods)
@@ -226,6 +245,7 @@ Options parse_options(int argc, char** argv, const std::vector<std::string>& kno
   check_methods(o.methods, known_methods);
   if(o.meshes.empty())
     usage_error("no mesh given");
+  check_write_mesh(texts, o);
   return o;
 }
 

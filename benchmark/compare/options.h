@@ -18,7 +18,8 @@ struct Options
   bool open = false;
   std::vector<std::string> methods; // empty: all
   std::string svg_panels;
-  std::string json_file; // --json-file: the JSON lines also go to this file
+  std::string json_file;  // --json-file: the JSON lines also go to this file
+  std::string write_mesh; // --write-mesh: the prepared mesh (triangulated, subdivided, opened) to this file
   std::vector<std::string> meshes;
 };
 
