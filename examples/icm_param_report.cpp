@@ -59,6 +59,8 @@ Run_figures::Run_figures(const ICM::Surface_parameterization_report& report, std
   genus = s.genus;
   loops = s.boundary_loops;
   newton = s.newton_iterations;
+  factorizations = s.factorizations;
+  preconditioned_solves = s.preconditioned_solves;
   moved = s.moved_vertices;
   overlaps = s.overlapping_border_edges;
   raw_overlaps = s.raw_overlapping_border_edges;
@@ -71,7 +73,8 @@ Run_figures::Run_figures(const ICM::Surface_parameterization_report& report, std
 }
 
 Run_figures::Run_figures(const ICM::Parameterization_report& report)
-  : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
+  : loops(report.boundary_loops), newton(report.newton_iterations), factorizations(report.factorizations),
+    preconditioned_solves(report.preconditioned_solves), moved(report.moved_vertices),
     overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
     curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error), metrics(report.metric),
     fallbacks(report.fallback_reason), layout(report.layout), seconds_index(report.seconds_index),
@@ -100,6 +103,8 @@ Json summary_json(const Arguments& args, const Mesh& mesh, const ICM::IO::Mesh_r
   j["seam_length"] = t.seam_length;
   j["layout"] = t.layout;
   j["newton_iterations"] = t.newton;
+  j["newton_factorizations"] = t.factorizations;
+  j["newton_preconditioned_solves"] = t.preconditioned_solves;
   j["max_curvature_error"] = t.curvature_error;
   j["max_layout_length_error"] = t.length_error;
   j["seam_length_error"] = t.seam_error;

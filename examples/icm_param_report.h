@@ -27,6 +27,7 @@ struct Run_figures
 {
   int charts = 1, components = 1, cones = 0, wide_cones = 0, cones_given_up = 0, genus = 0, loops = 0, newton = 0,
       moved = 0;
+  int factorizations = 0, preconditioned_solves = 0; ///< the entropy optimum's Newton, over the charts
   /// Pairs of crossing border edges, after and before overlap removal (the parameterizer of
   /// an energy or a prescribed border removes none: both are its count).
   std::optional<int> overlaps, raw_overlaps;

@@ -30,6 +30,8 @@ void add_surface_figures(py::dict& d, const Mesh& mesh, const Run_figures& t)
   d["seam_length"] = t.seam_length;
   d["layout"] = s.layouts;
   d["newton_iterations"] = s.newton_iterations;
+  d["newton_factorizations"] = s.factorizations;
+  d["newton_preconditioned_solves"] = s.preconditioned_solves;
   d["max_curvature_error"] = s.max_curvature_error;
   d["max_layout_length_error"] = s.max_layout_length_error;
   d["seam_length_error"] = s.seam_length_error;

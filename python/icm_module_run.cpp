@@ -44,6 +44,8 @@ Run_figures figures_of(const ICM::Parameterization_report& r)
   s.genus = r.genus;
   s.boundary_loops = r.boundary_loops;
   s.newton_iterations = r.newton_iterations;
+  s.factorizations = r.factorizations;
+  s.preconditioned_solves = r.preconditioned_solves;
   s.moved_vertices = r.moved_vertices;
   s.overlapping_border_edges = s.raw_overlapping_border_edges = r.overlapping_border_edges;
   s.max_curvature_error = r.max_curvature_error;

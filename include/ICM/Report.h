@@ -49,6 +49,10 @@ struct Chart_solve_report
   /// was used instead ("vertex-scaling: the Newton line search stalled ...").
   std::string fallback_reason;
   int newton_iterations = 0; ///< of the metric that succeeded, the energy's and the cones' not counted
+  /// The entropy optimum's Newton on a free border: numeric factorizations of the Laplacian
+  /// (its main cost on a large mesh), and the triangular solves of the conjugate gradients
+  /// that gave the other steps their directions from an earlier factorization.
+  int factorizations = 0, preconditioned_solves = 0;
   /// max |k_target - k| over the free vertices per Newton iteration of the entropy optimum.
   std::vector<double> residual_history;
   /// An energy other than the entropy: its optimizer's steps, E at the entropy optimum and
@@ -177,6 +181,7 @@ struct Surface_summary
 {
   int charts = 0, cones = 0, wide_cones = 0, genus = 0, boundary_loops = 0, newton_iterations = 0, moved_vertices = 0,
       overlapping_border_edges = 0, raw_overlapping_border_edges = 0, cones_given_up = 0;
+  int factorizations = 0, preconditioned_solves = 0; ///< summed over the charts
   double max_curvature_error = 0, max_layout_length_error = 0, seam_length_error = 0;
   std::string metrics, layouts, fallback_reason;
 };
@@ -197,6 +202,8 @@ inline Surface_summary surface_summary(const Surface_parameterization_report& re
     s.genus += c.genus;
     s.boundary_loops += c.boundary_loops;
     s.newton_iterations = std::max(s.newton_iterations, c.newton_iterations);
+    s.factorizations += c.factorizations;
+    s.preconditioned_solves += c.preconditioned_solves;
     s.moved_vertices += c.moved_vertices;
     s.overlapping_border_edges += c.overlapping_border_edges;
     s.raw_overlapping_border_edges += c.raw_overlapping_border_edges;

@@ -229,6 +229,8 @@ Status entropy_optimum(const Chart_problem& problem, const Chart_options& option
   const Newton_report newton =
     solver.solve(problem.target, u, options.newton, problem.first_step.size() > 0 ? &problem.first_step : nullptr);
   report.newton_iterations = newton.iterations;
+  report.factorizations = newton.factorizations;
+  report.preconditioned_solves = newton.preconditioned_solves;
   report.residual_history = newton.residual_history;
   return newton.converged ? Status::success() : Status::failure(ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, newton.message);
 }
