@@ -38,24 +38,34 @@ void open_at_first_vertex(Mesh& mesh)
     CGAL::Euler::remove_face(halfedge(f, mesh), mesh);
 }
 
-bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::string& error)
+namespace {
+
+/// Runs a CGAL reader or writer: false with `error` its exception's message, or `failure`
+/// when it returns false.
+template <class Io>
+bool io_succeeds(Io&& io, const char* failure, std::string& error)
 {
-  mesh.clear();
-  bool ok = false;
   try
   {
-    ok = CGAL::IO::read_polygon_mesh(path, mesh);
+    if(io())
+      return true;
+    error = failure;
   }
   catch(const std::exception& e)
   {
     error = e.what();
-    return false;
   }
-  if(!ok)
-  {
-    error = "cannot read a polygon mesh from this file";
+  return false;
+}
+
+} // namespace
+
+bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::string& error)
+{
+  mesh.clear();
+  if(!io_succeeds([&] { return CGAL::IO::read_polygon_mesh(path, mesh); }, "cannot read a polygon mesh from this file",
+                  error))
     return false;
-  }
   if(num_faces(mesh) == 0)
   {
     error = "the mesh has no faces";
@@ -75,19 +85,8 @@ bool load_mesh(const std::string& path, const Options& opt, Mesh& mesh, std::str
 
 bool write_mesh(const std::string& path, const Mesh& mesh, std::string& error)
 {
-  bool ok = false;
-  try
-  {
-    ok = CGAL::IO::write_polygon_mesh(path, mesh, CGAL::parameters::stream_precision(17));
-  }
-  catch(const std::exception& e)
-  {
-    error = e.what();
-    return false;
-  }
-  if(!ok)
-    error = "cannot write the mesh to this file";
-  return ok;
+  return io_succeeds([&] { return CGAL::IO::write_polygon_mesh(path, mesh, CGAL::parameters::stream_precision(17)); },
+                     "cannot write the mesh to this file", error);
 }
 
 Topology topology_of(Mesh& mesh)
