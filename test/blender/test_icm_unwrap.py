@@ -1,0 +1,270 @@
+"""Headless tests of the Blender add-on ICM Unwrap (python/blender/icm_unwrap, doc/blender.md).
+
+    blender -b --factory-startup --addons icm_unwrap --python test/blender/test_icm_unwrap.py \
+        [-- --figure FILE.png]
+
+with the add-on and the module icm installed in Blender's user scripts
+(scripts/install_blender_addon.sh; ctest's blender.icm_unwrap installs them into the build
+folder). Cases: a disk, a disk with a hole, a closed genus-1 mesh, a mesh with marked seams, a
+quad mesh, n-gons, a selection in edit mode, and refused selections (non-manifold, degenerate).
+Every unwrap is checked: UVs in [0, 1]^2, no flipped triangle (the signed UV area of each
+triangle of each face positive), a UV discontinuity along every marked seam. A refused one
+must raise Blender's error report (RuntimeError from bpy.ops) and leave the UVs as they were.
+Exits 1 if any case fails (Blender's --python returns 0 otherwise). --figure FILE draws the
+add-on's distortion picture of Suzanne's unwrap into FILE (the picture of the README).
+"""
+
+import os
+import sys
+import tempfile
+import time
+import traceback
+
+import bmesh
+import bpy
+import numpy as np
+
+
+def clear_scene():
+    """Leaves object mode with no object, mesh or image."""
+    if bpy.context.object is not None and bpy.context.object.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.images):
+        for item in list(collection):
+            collection.remove(item)
+
+
+def object_from(name, verts, faces):
+    """A new active mesh object of the given vertices and faces."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    return obj
+
+
+def uv_array(obj):
+    """The active UV layer's UVs, one row per loop, or None without a layer."""
+    layer = obj.data.uv_layers.active
+    if layer is None:
+        return None
+    uv = np.zeros(2 * len(obj.data.loops))
+    layer.data.foreach_get("uv", uv)
+    return uv.reshape(-1, 2)
+
+
+def object_bmesh(obj):
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    return bm
+
+
+def check_layout(obj, faces=None):
+    """UVs in [0, 1]^2 and every triangle of the faces (all if None) positively oriented."""
+    bm = object_bmesh(obj)
+    layer = bm.loops.layers.uv.active
+    assert layer is not None, "no UV layer"
+    bm.faces.index_update()
+    chosen = None if faces is None else set(faces)
+    flipped = 0
+    count = 0
+    for tri in bm.calc_loop_triangles():
+        if chosen is not None and tri[0].face.index not in chosen:
+            continue
+        p, q, r = (np.array(loop[layer].uv) for loop in tri)
+        assert np.all(p >= -1e-6) and np.all(p <= 1 + 1e-6), f"UV {p} outside [0,1]^2"
+        e1, e2 = q - p, r - p
+        flipped += e1[0] * e2[1] - e1[1] * e2[0] <= 0
+        count += 1
+    bm.free()
+    assert count > 0, "no triangle checked"
+    assert flipped == 0, f"{flipped} of {count} triangles flipped or degenerate in UV"
+
+
+def check_seams_open(obj):
+    """Across every marked seam between two faces, the two sides' UVs differ; returns the count."""
+    bm = object_bmesh(obj)
+    layer = bm.loops.layers.uv.active
+    seams = 0
+    for edge in bm.edges:
+        if not edge.seam or len(edge.link_faces) != 2:
+            continue
+        sides = []
+        for loop in edge.link_loops:
+            ends = {loop.vert.index: loop[layer].uv.copy(), loop.link_loop_next.vert.index: loop.link_loop_next[layer].uv.copy()}
+            sides.append(ends)
+        gap = max((sides[0][v] - sides[1][v]).length for v in sides[0])
+        assert gap > 1e-6, f"seam edge {edge.index} has the same UVs on both sides"
+        seams += 1
+    bm.free()
+    assert seams > 0, "no seam checked"
+    return seams
+
+
+def unwrap(**options):
+    result = bpy.ops.uv.icm_unwrap(**options)
+    assert result == {"FINISHED"}, result
+
+
+def test_registered():
+    assert "icm_unwrap" in bpy.context.preferences.addons, "the add-on is not enabled"
+    assert hasattr(bpy.ops.uv, "icm_unwrap")
+    texts = [f.__name__ for f in bpy.types.VIEW3D_MT_uv_map._dyn_ui_initialize()]
+    assert "menu_func" in texts, f"not in the UV menu: {texts}"
+
+
+def test_disk():
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=12, y_subdivisions=12, size=2)
+    obj = bpy.context.active_object
+    unwrap()
+    check_layout(obj)
+
+
+def test_disk_with_hole():
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=12, y_subdivisions=12, size=2)
+    obj = bpy.context.active_object
+    bm = object_bmesh(obj)
+    middle = [f for f in bm.faces if f.calc_center_median().length < 0.4]
+    bmesh.ops.delete(bm, geom=middle, context="FACES_ONLY")
+    bm.to_mesh(obj.data)
+    bm.free()
+    unwrap(cone_mode="NONE")
+    check_layout(obj)
+
+
+def test_torus():
+    bpy.ops.mesh.primitive_torus_add(major_segments=32, minor_segments=12)
+    obj = bpy.context.active_object
+    path = os.path.join(tempfile.mkdtemp(), "torus_uv.png")
+    unwrap(distortion_picture=True, picture_path=path, picture_size=128)
+    check_layout(obj)
+    assert os.path.getsize(path) > 0, "no picture written"
+    assert "ICM distortion" in bpy.data.images
+
+
+def test_marked_seams():
+    """A UV sphere with the equator and a half meridian marked: two hemispheres, each cut open."""
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    obj = bpy.context.active_object
+    for edge in obj.data.edges:
+        a, b = (obj.data.vertices[i].co for i in edge.vertices)
+        equator = abs(a.z) < 1e-5 and abs(b.z) < 1e-5
+        meridian = all(abs(p.y) < 1e-5 and p.x >= -1e-5 for p in (a, b))
+        edge.use_seam = equator or meridian
+    unwrap(cone_mode="NONE")
+    check_layout(obj)
+    seams = check_seams_open(obj)
+    assert seams >= 16 + 8, seams
+
+
+def test_quad_mesh():
+    bpy.ops.mesh.primitive_cube_add()
+    obj = bpy.context.active_object
+    bm = object_bmesh(obj)
+    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:], cuts=4, use_grid_fill=True)
+    bm.to_mesh(obj.data)
+    bm.free()
+    assert all(len(p.vertices) == 4 for p in obj.data.polygons)
+    unwrap(margin=0.02)
+    check_layout(obj)
+
+
+def test_ngons():
+    bpy.ops.mesh.primitive_cylinder_add(vertices=24)  # two 24-gons for caps
+    obj = bpy.context.active_object
+    assert max(len(p.vertices) for p in obj.data.polygons) == 24
+    unwrap(cone_mode="COUNT", cone_count=4)
+    check_layout(obj)
+
+
+def test_edit_mode_selection():
+    """Only the selected faces change; the others keep the grid's own UVs."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=10, y_subdivisions=10, size=2)
+    obj = bpy.context.active_object
+    mesh = obj.data
+    chosen = [p.index for p in mesh.polygons if p.center.x < 0]
+    for p in mesh.polygons:
+        p.select = p.index in chosen
+    before = uv_array(obj)
+    bpy.ops.object.mode_set(mode="EDIT")
+    unwrap()
+    bpy.ops.object.mode_set(mode="OBJECT")
+    after = uv_array(obj)
+    other = [i for p in mesh.polygons if p.index not in chosen for i in p.loop_indices]
+    assert np.array_equal(before[other], after[other]), "an unselected face's UVs changed"
+    mine = [i for p in mesh.polygons if p.index in chosen for i in p.loop_indices]
+    assert not np.allclose(before[mine], after[mine]), "the selected faces kept their UVs"
+    check_layout(obj, chosen)
+
+
+def check_refused(obj, word):
+    """The unwrap fails with Blender's error report naming `word`, and changes no UV."""
+    before = uv_array(obj)
+    layers = len(obj.data.uv_layers)
+    try:
+        bpy.ops.uv.icm_unwrap()
+    except RuntimeError as error:
+        message = str(error)
+    else:
+        raise AssertionError("the bad selection was not refused")
+    assert word in message and "Traceback" not in message, message
+    assert len(obj.data.uv_layers) == layers, "a UV layer was added"
+    after = uv_array(obj)
+    assert (before is None and after is None) or np.array_equal(before, after), "the UVs changed"
+
+
+def test_refused_non_manifold():
+    """Three triangles on one edge."""
+    verts = [(0, 0, 0), (1, 0, 0), (0.5, 1, 0), (0.5, -1, 0), (0.5, 0, 1)]
+    obj = object_from("fin", verts, [(0, 1, 2), (1, 0, 3), (0, 1, 4)])
+    obj.data.uv_layers.new(name="UVMap")
+    obj.data.uv_layers.active.data.foreach_set("uv", np.linspace(0, 1, 18))
+    check_refused(obj, "non-manifold")
+
+
+def test_refused_degenerate():
+    """A strip of triangles, one of them with three collinear corners; no UV layer before."""
+    verts = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 1, 0), (1, 1, 0)]
+    obj = object_from("flat", verts, [(0, 1, 4), (0, 4, 3), (0, 1, 2)])
+    check_refused(obj, "degenerate")
+
+
+def figure(path):
+    """The distortion picture of Suzanne's unwrap (automatic cones), as the README shows it."""
+    clear_scene()
+    bpy.ops.mesh.primitive_monkey_add()
+    bpy.ops.uv.icm_unwrap(distortion_picture=True, picture_path=os.path.abspath(path), picture_size=768)
+    check_layout(bpy.context.active_object)
+    print(f"figure: {path}")
+
+
+TESTS = [
+    test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_quad_mesh,
+    test_ngons, test_edit_mode_selection, test_refused_non_manifold, test_refused_degenerate,
+]
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
+    failures = 0
+    for test in TESTS:
+        clear_scene()
+        start = time.perf_counter()
+        try:
+            test()
+            print(f"PASS {test.__name__} ({time.perf_counter() - start:.2f} s)")
+        except Exception:  # every failure is counted, the other cases still run
+            traceback.print_exc()
+            print(f"FAIL {test.__name__}")
+            failures += 1
+    if "--figure" in argv:
+        figure(argv[argv.index("--figure") + 1])
+    print(f"{len(TESTS) - failures} of {len(TESTS)} passed")
+    sys.stdout.flush()
+    sys.exit(1 if failures else 0)
+
+
+main()
