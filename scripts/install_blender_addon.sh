@@ -2,8 +2,8 @@
 # Installs the Blender add-on ICM Unwrap (python/blender/icm_unwrap) and the Python module icm
 # it calls into Blender's user scripts, and enables the add-on (doc/blender.md):
 #   SCRIPTS/addons/icm_unwrap   the add-on (Blender loads add-ons from SCRIPTS/addons)
-#   SCRIPTS/modules/icm         the package icm with its compiled _icm (SCRIPTS/modules is on
-#                               the sys.path of Blender's Python)
+#   SCRIPTS/addons/modules/icm  the package icm with its compiled _icm (SCRIPTS/addons/modules is
+#                               on the sys.path of Blender's Python, for the modules of add-ons)
 # SCRIPTS is $BLENDER_USER_SCRIPTS if set, else ~/.config/blender/X.Y/scripts for the installed
 # Blender X.Y (what bpy.utils.user_resource('SCRIPTS') gives). The module is the one of
 # BUILD_DIR (default build/), built here (target _icm) if it is not yet: Debian's Blender runs on
@@ -34,13 +34,13 @@ else
   scripts="$HOME/.config/blender/$version/scripts"
 fi
 
-mkdir -p "$scripts/addons" "$scripts/modules"
-rm -rf "$scripts/addons/icm_unwrap" "$scripts/modules/icm"
+mkdir -p "$scripts/addons/modules"
+rm -rf "$scripts/addons/icm_unwrap" "$scripts/addons/modules/icm"
 cp -r python/blender/icm_unwrap "$scripts/addons/icm_unwrap"
 rm -rf "$scripts/addons/icm_unwrap/__pycache__"
-mkdir -p "$scripts/modules/icm"
-cp "$build"/python/icm/*.py "$build"/python/icm/py.typed "$build"/python/icm/_icm*.so "$scripts/modules/icm/"
-echo "installed: $scripts/addons/icm_unwrap and $scripts/modules/icm"
+mkdir -p "$scripts/addons/modules/icm"
+cp "$build"/python/icm/*.py "$build"/python/icm/py.typed "$build"/python/icm/_icm*.so "$scripts/addons/modules/icm/"
+echo "installed: $scripts/addons/icm_unwrap and $scripts/addons/modules/icm"
 
 if [ "$enable" = 1 ]; then
   BLENDER_USER_SCRIPTS="$scripts" blender -b --python-exit-code 1 --python-expr \

@@ -20,6 +20,7 @@ import tempfile
 import time
 import traceback
 
+import addon_utils
 import bmesh
 import bpy
 import numpy as np
@@ -110,7 +111,7 @@ def unwrap(**options):
 
 
 def test_registered():
-    assert "icm_unwrap" in bpy.context.preferences.addons, "the add-on is not enabled"
+    assert addon_utils.check("icm_unwrap")[1], "the add-on is not loaded"
     assert hasattr(bpy.ops.uv, "icm_unwrap")
     texts = [f.__name__ for f in bpy.types.VIEW3D_MT_uv_map._dyn_ui_initialize()]
     assert "menu_func" in texts, f"not in the UV menu: {texts}"
@@ -186,10 +187,14 @@ def test_edit_mode_selection():
     obj = bpy.context.active_object
     mesh = obj.data
     chosen = [p.index for p in mesh.polygons if p.center.x < 0]
-    for p in mesh.polygons:
-        p.select = p.index in chosen
     before = uv_array(obj)
     bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="DESELECT")
+    bm = bmesh.from_edit_mesh(mesh)
+    bm.faces.ensure_lookup_table()
+    for i in chosen:
+        bm.faces[i].select_set(True)
+    bmesh.update_edit_mesh(mesh)
     unwrap()
     bpy.ops.object.mode_set(mode="OBJECT")
     after = uv_array(obj)
@@ -232,6 +237,22 @@ def test_refused_degenerate():
     check_refused(obj, "degenerate")
 
 
+def test_refused_by_icm():
+    """A closed mesh with Cones: None: ICM's own error, reported, the primitive's UVs kept."""
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=2)
+    obj = bpy.context.active_object
+    obj.data.uv_layers.new(name="UVMap")
+    obj.data.uv_layers.active.data.foreach_set("uv", np.linspace(0, 1, 2 * len(obj.data.loops)))
+    before = uv_array(obj)
+    try:
+        bpy.ops.uv.icm_unwrap(cone_mode="NONE")
+    except RuntimeError as error:
+        assert "ICM Unwrap" in str(error) and "Traceback" not in str(error), error
+    else:
+        raise AssertionError("a closed mesh without cones was not refused")
+    assert np.array_equal(before, uv_array(obj)), "the UVs changed"
+
+
 def figure(path):
     """The distortion picture of Suzanne's unwrap (automatic cones), as the README shows it."""
     clear_scene()
@@ -244,6 +265,7 @@ def figure(path):
 TESTS = [
     test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_quad_mesh,
     test_ngons, test_edit_mode_selection, test_refused_non_manifold, test_refused_degenerate,
+    test_refused_by_icm,
 ]
 
 

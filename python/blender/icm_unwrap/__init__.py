@@ -18,6 +18,7 @@ import bpy
 import numpy as np
 
 from . import arrays as mesh_arrays
+from . import cut
 from . import picture
 
 bl_info = {
@@ -164,12 +165,20 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
     def unwrap(self, icm, access):
         """Runs ICM on the faces to unwrap: (arrays, result, uv, fuv), or raises with the reason."""
         arrays = mesh_arrays.build(access.bm, selected_only=access.edit)
-        result = icm.parameterize(
-            arrays.V, arrays.F,
-            cones=cones_argument(self.cone_mode, self.cone_count),
-            atlas=self.atlas_size,
-            padding=padding_texels(self.margin, self.atlas_size),
-        )
+        packing = {"atlas": self.atlas_size, "padding": padding_texels(self.margin, self.atlas_size)}
+        cones = cones_argument(self.cone_mode, self.cone_count)
+        result = icm.parameterize(arrays.V, arrays.F, cones=cones, **packing)
+        seams = cut.off_diagonals(arrays, result.seams)
+        if seams is not None:
+            # Again on ICM's cut moved off the diagonals, with the first run's cones and angles
+            # (cones=0: no more on the pieces without seams, which had none); if that fails
+            # the first run stands, and the n-gons it cut through are reported.
+            try:
+                result = icm.parameterize(
+                    arrays.V, arrays.F, cones=0, seams=seams, cone=cut.cones_of(arrays, result), **packing
+                )
+            except icm.Error:
+                pass
         uv, fuv = check_result(result, arrays)
         return arrays, result, uv, fuv
 

@@ -16,13 +16,15 @@ class SelectionError(ValueError):
 
 
 class Arrays:
-    """V (n, 3), F (m, 3), and the loop of every corner of F (`corner_loops[t][c]`)."""
+    """V (n, 3), F (m, 3), the loop of every corner of F (`corner_loops[t][c]`), the faces,
+    and the row of V of every loop of the faces (`row_of`)."""
 
-    def __init__(self, V, F, corner_loops, faces):
+    def __init__(self, V, F, corner_loops, faces, row_of):
         self.V = V
         self.F = F
         self.corner_loops = corner_loops
         self.faces = faces
+        self.row_of = row_of
 
 
 def selected_faces(bm, selected_only):
@@ -118,5 +120,5 @@ def build(bm, selected_only):
         V[row] = loop.vert.co
     F = np.array([[row_of[l] for l in tri] for tri in tris], dtype=np.int64).reshape(-1, 3)
     check_degenerate(V, F, [tri[0].face for tri in tris])
-    return Arrays(V, F, tris, faces)
+    return Arrays(V, F, tris, faces, row_of)
 
