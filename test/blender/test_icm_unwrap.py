@@ -93,10 +93,9 @@ def check_seams_open(obj):
     for edge in bm.edges:
         if not edge.seam or len(edge.link_faces) != 2:
             continue
-        sides = []
-        for loop in edge.link_loops:
-            ends = {loop.vert.index: loop[layer].uv.copy(), loop.link_loop_next.vert.index: loop.link_loop_next[layer].uv.copy()}
-            sides.append(ends)
+        sides = [
+            {l.vert.index: l[layer].uv.copy() for l in (loop, loop.link_loop_next)} for loop in edge.link_loops
+        ]
         gap = max((sides[0][v] - sides[1][v]).length for v in sides[0])
         assert gap > 1e-6, f"seam edge {edge.index} has the same UVs on both sides"
         seams += 1
