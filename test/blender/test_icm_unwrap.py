@@ -1,7 +1,7 @@
 """Headless tests of the Blender add-on ICM Unwrap (python/blender/icm_unwrap, doc/blender.md).
 
     blender -b --factory-startup --addons icm_unwrap --python test/blender/test_icm_unwrap.py \
-        [-- --figure FILE.png]
+        [-- --figure FILE.png [--preview FILE.png]]
 
 with the add-on and the module icm installed in Blender's user scripts
 (scripts/install_blender_addon.sh; ctest's blender.icm_unwrap installs them into the build
@@ -11,9 +11,11 @@ Every unwrap is checked: UVs in [0, 1]^2, no flipped triangle (the signed UV are
 triangle of each face positive), a UV discontinuity along every marked seam. A refused one
 must raise Blender's error report (RuntimeError from bpy.ops) and leave the UVs as they were.
 Exits 1 if any case fails (Blender's --python returns 0 otherwise). --figure FILE draws the
-add-on's distortion picture of Suzanne's unwrap into FILE (the picture of the README).
+add-on's distortion picture of Suzanne's unwrap into FILE, --preview FILE renders Suzanne with a
+checkerboard through those UVs (Cycles on the CPU): the pictures of the README.
 """
 
+import math
 import os
 import sys
 import tempfile
@@ -252,13 +254,61 @@ def test_refused_by_icm():
     assert np.array_equal(before, uv_array(obj)), "the UVs changed"
 
 
-def figure(path):
-    """The distortion picture of Suzanne's unwrap (automatic cones), as the README shows it."""
+def suzanne():
+    """Blender's Suzanne, subdivided twice (7872 quads), turned a little towards the camera."""
+    bpy.ops.mesh.primitive_monkey_add(rotation=(0, 0, math.radians(-25)))
+    obj = bpy.context.active_object
+    modifier = obj.modifiers.new("subdivision", "SUBSURF")
+    modifier.levels = 2
+    bpy.ops.object.modifier_apply(modifier=modifier.name)
+    bpy.ops.object.shade_smooth()
+    return obj
+
+
+def checker_material(obj):
+    """A checkerboard through the active UV layer."""
+    material = bpy.data.materials.new("checker")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    checker = nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = 48
+    checker.inputs["Color1"].default_value = (0.9, 0.9, 0.9, 1)
+    checker.inputs["Color2"].default_value = (0.15, 0.15, 0.2, 1)
+    links.new(nodes.new("ShaderNodeTexCoord").outputs["UV"], checker.inputs["Vector"])
+    links.new(checker.outputs["Color"], nodes["Principled BSDF"].inputs["Base Color"])
+    obj.data.materials.append(material)
+
+
+def render(path):
+    """Renders the scene with Cycles on the CPU (headless) into path."""
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    camera.location, camera.rotation_euler = (0, -4.2, 0.3), (math.radians(86), 0, 0)
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.rotation_euler, sun.data.energy = (math.radians(50), math.radians(-20), math.radians(-30)), 3
+    scene = bpy.context.scene
+    for obj in (camera, sun):
+        scene.collection.objects.link(obj)
+    scene.camera = camera
+    scene.render.engine = "CYCLES"
+    scene.cycles.device, scene.cycles.samples, scene.cycles.use_denoising = "CPU", 16, False
+    scene.render.resolution_x = scene.render.resolution_y = 512
+    scene.world.color = (0.3, 0.3, 0.3)
+    scene.render.filepath = os.path.abspath(path)
+    bpy.ops.render.render(write_still=True)
+
+
+def figures(picture, preview):
+    """The README's pictures: the distortion picture of Suzanne's unwrap (automatic cones) and,
+    if preview, Suzanne rendered with a checkerboard through its UVs."""
     clear_scene()
-    bpy.ops.mesh.primitive_monkey_add()
-    bpy.ops.uv.icm_unwrap(distortion_picture=True, picture_path=os.path.abspath(path), picture_size=768)
-    check_layout(bpy.context.active_object)
-    print(f"figure: {path}")
+    obj = suzanne()
+    bpy.ops.uv.icm_unwrap(distortion_picture=True, picture_path=os.path.abspath(picture), picture_size=768)
+    check_layout(obj)
+    print(f"figure: {picture}")
+    if preview:
+        checker_material(obj)
+        render(preview)
+        print(f"figure: {preview}")
 
 
 TESTS = [
@@ -282,7 +332,8 @@ def main():
             print(f"FAIL {test.__name__}")
             failures += 1
     if "--figure" in argv:
-        figure(argv[argv.index("--figure") + 1])
+        preview = argv[argv.index("--preview") + 1] if "--preview" in argv else None
+        figures(argv[argv.index("--figure") + 1], preview)
     print(f"{len(TESTS) - failures} of {len(TESTS)} passed")
     sys.stdout.flush()
     sys.exit(1 if failures else 0)
