@@ -206,6 +206,14 @@ def test_edit_mode_selection():
     check_layout(obj, chosen)
 
 
+def test_non_manifold_vertex():
+    """Two triangles meeting at one vertex: split there, as ICM's readers split it, not refused."""
+    verts = [(0, 0, 0), (1, 0, 0), (0.5, 1, 0), (-1, 0, 0), (-0.5, -1, 0)]
+    obj = object_from("bowtie", verts, [(0, 1, 2), (0, 3, 4)])
+    unwrap()
+    check_layout(obj)
+
+
 def check_refused(obj, word):
     """The unwrap fails with Blender's error report naming `word`, and changes no UV."""
     before = uv_array(obj)
@@ -314,7 +322,7 @@ def figures(picture, preview):
 TESTS = [
     test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_quad_mesh,
     test_ngons, test_edit_mode_selection, test_refused_non_manifold, test_refused_degenerate,
-    test_refused_by_icm,
+    test_non_manifold_vertex, test_refused_by_icm,
 ]
 
 

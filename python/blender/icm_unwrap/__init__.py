@@ -81,11 +81,19 @@ def loop_uvs(arrays, uv, fuv):
     return chosen, conflicts
 
 
-def write_uvs(bm, uvs):
-    """Writes the UVs into the active UV layer of bm, made if there is none."""
-    layer = bm.loops.layers.uv.active or bm.loops.layers.uv.new("UVMap")
-    for loop, value in uvs.items():
-        loop[layer].uv = value
+def write_uvs(bm, faces, uvs):
+    """Writes the UVs into the active UV layer of bm, made if there is none.
+
+    Adding a layer reallocates the loops' data, which leaves the Python loops stale: the loops
+    are named by face index and corner first, and found again after.
+    """
+    corners = [(face.index, i, uvs[loop]) for face in faces for i, loop in enumerate(face.loops) if loop in uvs]
+    layer = bm.loops.layers.uv.active
+    if layer is None:
+        layer = bm.loops.layers.uv.new("UVMap")
+    bm.faces.ensure_lookup_table()
+    for face, corner, value in corners:
+        bm.faces[face].loops[corner][layer].uv = value
 
 
 class MeshAccess:
@@ -192,6 +200,10 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
         )
         if conflicts:
             text += f"; {conflicts} corners of n-gons cut through by ICM's seams"
+        if report.get("faces_reoriented", 0):
+            # ICM lays them out with their neighbours' orientation: the texture runs on across
+            # them, their UVs wind the other way (Mesh > Normals > Recalculate Outside fixes it).
+            text += f"; {report['faces_reoriented']} triangles with normals against their neighbours'"
         return text
 
     def execute(self, context):
@@ -207,10 +219,13 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
             if self.distortion_picture:
                 path = bpy.path.abspath(self.picture_path) if self.picture_path else ""
                 picture.distortion_picture(bpy, arrays, uv, fuv, self.picture_size, path)
-            write_uvs(access.bm, uvs)
+            write_uvs(access.bm, arrays.faces, uvs)
             access.commit()
         except (mesh_arrays.SelectionError, icm.Error, ValueError, RuntimeError, OSError) as error:
             self.report({"ERROR"}, f"ICM Unwrap: {error}")
+            return {"CANCELLED"}
+        except Exception as error:  # never a traceback in the user's face: a report, the mesh kept
+            self.report({"ERROR"}, f"ICM Unwrap failed: {type(error).__name__}: {error}")
             return {"CANCELLED"}
         finally:
             access.free()
