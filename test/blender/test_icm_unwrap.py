@@ -206,6 +206,26 @@ def test_edit_mode_selection():
     check_layout(obj, chosen)
 
 
+def test_edit_mode_without_uv_layer():
+    """In edit mode on a mesh with no UV layer: one is made; with nothing selected: refused."""
+    verts = [(x, y, 0.1 * x * y) for y in range(5) for x in range(5)]
+    faces = [(y * 5 + x, y * 5 + x + 1, y * 5 + x + 6, y * 5 + x + 5) for y in range(4) for x in range(4)]
+    obj = object_from("sheet", verts, faces)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="DESELECT")
+    try:
+        bpy.ops.uv.icm_unwrap()
+    except RuntimeError as error:
+        assert "no face selected" in str(error), error
+    else:
+        raise AssertionError("an empty selection was not refused")
+    bpy.ops.mesh.select_all(action="SELECT")
+    unwrap()
+    bpy.ops.object.mode_set(mode="OBJECT")
+    assert len(obj.data.uv_layers) == 1
+    check_layout(obj)
+
+
 def test_non_manifold_vertex():
     """Two triangles meeting at one vertex: split there, as ICM's readers split it, not refused."""
     verts = [(0, 0, 0), (1, 0, 0), (0.5, 1, 0), (-1, 0, 0), (-0.5, -1, 0)]
@@ -322,7 +342,7 @@ def figures(picture, preview):
 TESTS = [
     test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_quad_mesh,
     test_ngons, test_edit_mode_selection, test_refused_non_manifold, test_refused_degenerate,
-    test_non_manifold_vertex, test_refused_by_icm,
+    test_edit_mode_without_uv_layer, test_non_manifold_vertex, test_refused_by_icm,
 ]
 
 
