@@ -183,19 +183,20 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
             # the first run stands, and the n-gons it cut through are reported.
             try:
                 result = icm.parameterize(
-                    arrays.V, arrays.F, cones=0, seams=seams, cone=cut.cones_of(arrays, result), **packing
+                    arrays.V, arrays.F, cones=0, seams=seams, cone=cut.cones_for_moved_cut(arrays, result, seams),
+                    **packing,
                 )
             except icm.Error:
                 pass
         uv, fuv = check_result(result, arrays)
         return arrays, result, uv, fuv
 
-    def summary(self, result, conflicts):
+    def summary(self, result, cones, conflicts):
         """The line of the status bar: charts, cones, distortion."""
         report = result.report
         text = (
             f"ICM Unwrap: {report.get('faces', 0)} triangles, {result.charts} charts, "
-            f"{report.get('cones', 0)} cones, log area distortion {report.get('log_area_distortion', 0.0):.4g}, "
+            f"{cones} cones, log area distortion {report.get('log_area_distortion', 0.0):.4g}, "
             f"{report.get('flipped_faces', 0)} flipped"
         )
         if conflicts:
@@ -229,7 +230,10 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             access.free()
-        self.report({"WARNING"} if conflicts else {"INFO"}, self.summary(result, conflicts))
+        # The cones as the layout has them (interior vertices whose UV angle is not 360
+        # degrees): ICM's count also names the flat ends of a cut given to it.
+        cones = len(cut.cones_of(arrays, result))
+        self.report({"WARNING"} if conflicts else {"INFO"}, self.summary(result, cones, conflicts))
         return {"FINISHED"}
 
 

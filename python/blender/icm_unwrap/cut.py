@@ -100,17 +100,35 @@ def angle_sums(rows, F, uv, fuv):
     return sums
 
 
-def cones_of(arrays, result):
-    """The cones of ICM's run as (row, degrees): the interior rows whose UV angle is not 2 pi.
+def border_rows(F):
+    """The rows of V on a border edge."""
+    return {row for edge, count in triangle_sides(F).items() if count == 1 for row in edge}
 
-    Given back to the second run with the moved cut, so that it keeps the first run's cones
-    and their angles (the cut's ends alone would leave out the cones along it).
-    """
-    sides = triangle_sides(arrays.F)
-    border = {row for edge, count in sides.items() if count == 1 for row in edge}
+
+def cones_of(arrays, result):
+    """The cones of ICM's run as (row, degrees): the interior rows whose UV angle is not 2 pi."""
+    border = border_rows(arrays.F)
     sums = angle_sums(len(arrays.V), arrays.F, np.asarray(result.uv), np.asarray(result.fuv))
     return [
         (row, float(np.degrees(sums[row])))
         for row in range(len(arrays.V))
         if row not in border and abs(sums[row] - 2.0 * np.pi) > 1e-6
     ]
+
+
+def cones_for_moved_cut(arrays, result, seams):
+    """The `cone` argument of the run on the moved cut: the first run's cones with their angles,
+    and every other end or branch point of the moved cut flat (360 degrees).
+
+    ICM makes the ends and branch points of given seams cones whose angles its optimum chooses;
+    those the move made would otherwise get small cones that the first run did not have.
+    """
+    cones = cones_of(arrays, result)
+    taken = {row for row, _ in cones}
+    degree = {}
+    for a, b in np.asarray(seams).reshape(-1, 2):
+        for row in (int(a), int(b)):
+            degree[row] = degree.get(row, 0) + 1
+    border = border_rows(arrays.F)
+    flat = [(row, 360.0) for row, d in sorted(degree.items()) if d != 2 and row not in taken and row not in border]
+    return cones + flat
