@@ -162,6 +162,42 @@ def test_marked_seams():
     assert seams >= 16 + 8, seams
 
 
+def island_boxes(obj):
+    """The UV bounding box (lo, hi) of each piece of faces that no seam parts."""
+    bm = object_bmesh(obj)
+    layer = bm.loops.layers.uv.active
+    seen, boxes = set(), []
+    for start in bm.faces:
+        if start.index in seen:
+            continue
+        stack, uvs = [start], []
+        seen.add(start.index)
+        while stack:
+            face = stack.pop()
+            uvs += [tuple(loop[layer].uv) for loop in face.loops]
+            for edge in face.edges:
+                for other in edge.link_faces:
+                    if not edge.seam and other.index not in seen:
+                        seen.add(other.index)
+                        stack.append(other)
+        boxes.append((np.min(uvs, axis=0), np.max(uvs, axis=0)))
+    bm.free()
+    return boxes
+
+
+def test_margin():
+    """The two hemispheres of a sphere cut at its equator: charts at least Margin apart."""
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    obj = bpy.context.active_object
+    for edge in obj.data.edges:
+        edge.use_seam = all(abs(obj.data.vertices[i].co.z) < 1e-5 for i in edge.vertices)
+    unwrap(cone_mode="COUNT", cone_count=2, margin=0.05)
+    check_layout(obj)
+    (lo0, hi0), (lo1, hi1) = island_boxes(obj)
+    gap = max(np.max(lo1 - hi0), np.max(lo0 - hi1))
+    assert gap >= 0.045, f"charts {gap:.4f} apart, Margin 0.05"
+
+
 def test_quad_mesh():
     bpy.ops.mesh.primitive_cube_add()
     obj = bpy.context.active_object
@@ -340,7 +376,7 @@ def figures(picture, preview):
 
 
 TESTS = [
-    test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_quad_mesh,
+    test_registered, test_disk, test_disk_with_hole, test_torus, test_marked_seams, test_margin, test_quad_mesh,
     test_ngons, test_edit_mode_selection, test_refused_non_manifold, test_refused_degenerate,
     test_edit_mode_without_uv_layer, test_non_manifold_vertex, test_refused_by_icm,
 ]
