@@ -34,7 +34,7 @@ bl_info = {
 CONE_MODES = [
     ("AUTO", "Automatic", "Cones where the surface needs them (ICM's default)"),
     ("NONE", "None", "No cone: one chart per disk; a closed piece fails"),
-    ("COUNT", "Count", "Exactly the given number of cones"),
+    ("COUNT", "Count", "Exactly Cone Count cones on each piece (connected component)"),
 ]
 
 
@@ -131,7 +131,7 @@ class UV_OT_icm_unwrap(bpy.types.Operator):
 
     cone_mode: bpy.props.EnumProperty(name="Cones", items=CONE_MODES, default="AUTO")
     cone_count: bpy.props.IntProperty(
-        name="Cone Count", description="The number of cones when Cones is Count", default=8, min=1, max=1000
+        name="Cone Count", description="The number of cones of each piece when Cones is Count", default=8, min=1, max=1000
     )
     margin: bpy.props.FloatProperty(
         name="Margin", description="Space between charts, a fraction of the UV square",
