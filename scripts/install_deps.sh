@@ -5,12 +5,13 @@
 # 533k unknowns (doc/solvers.md). libtinygltf-dev writes the glTF output: Debian builds its
 # implementation (with nlohmann-json and stb) into a shared library, found by CMake. pybind11,
 # numpy and pytest build and test the Python module (doc/python.md) for Debian's /usr/bin/python3;
-# python3-distributed (Dask) runs its batches on a cluster (doc/batch.md, python/tests/test_batch.py).
+# python3-distributed (Dask) runs its batches on a cluster (doc/batch.md, python/tests/test_batch.py);
+# blender (3.4, on the same Python 3.11) runs the headless tests of the add-on ICM Unwrap (doc/blender.md).
 set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
           libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtinygltf-dev doxygen python3
           clang-format libopenblas0-pthread libstb-dev
-          pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed)
+          pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed blender)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
