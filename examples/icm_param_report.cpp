@@ -73,8 +73,8 @@ Run_figures::Run_figures(const ICM::Surface_parameterization_report& report, std
 }
 
 Run_figures::Run_figures(const ICM::Parameterization_report& report)
-  : loops(report.boundary_loops), newton(report.newton_iterations), factorizations(report.factorizations),
-    preconditioned_solves(report.preconditioned_solves), moved(report.moved_vertices),
+  : loops(report.boundary_loops), newton(report.newton_iterations), moved(report.moved_vertices),
+    factorizations(report.factorizations), preconditioned_solves(report.preconditioned_solves),
     overlaps(report.overlapping_border_edges), raw_overlaps(report.overlapping_border_edges),
     curvature_error(report.max_curvature_error), length_error(report.max_layout_length_error), metrics(report.metric),
     fallbacks(report.fallback_reason), layout(report.layout), seconds_index(report.seconds_index),
