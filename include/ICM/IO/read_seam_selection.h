@@ -89,7 +89,7 @@ bool selection_cones(
     const std::string why =
       by_index[index].size() > 1 ? " is non-manifold and was split into " + std::to_string(by_index[index].size()) +
                                      " vertices (which one is the cone?)"
-      : is_border(by_index[index].front(), mesh) ? " is on the border (a cone is an interior vertex)"
+      : CGAL::is_border(by_index[index].front(), mesh) ? " is on the border (a cone is an interior vertex)"
                                                  : std::string();
     if(!why.empty())
     {
