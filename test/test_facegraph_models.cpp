@@ -254,6 +254,7 @@ void expect_same(const Result& got, const Result& expected, const std::string& w
   EXPECT_EQ(got.charts, expected.charts) << what;
   EXPECT_EQ(got.cones, expected.cones) << what;
   EXPECT_EQ(got.seam_edges, expected.seam_edges) << what;
+  ASSERT_FALSE(expected.uvs.empty()) << what;
   ASSERT_EQ(got.uvs.size(), expected.uvs.size()) << what;
   double largest = 0;
   for(const auto& [key, p] : expected.uvs)
