@@ -90,7 +90,7 @@ bool selection_cones(
       by_index[index].size() > 1 ? " is non-manifold and was split into " + std::to_string(by_index[index].size()) +
                                      " vertices (which one is the cone?)"
       : CGAL::is_border(by_index[index].front(), mesh) ? " is on the border (a cone is an interior vertex)"
-                                                 : std::string();
+                                                       : std::string();
     if(!why.empty())
     {
       error = where + std::to_string(index) + why;
