@@ -7,9 +7,11 @@
 # numpy and pytest build and test the Python module (doc/python.md) for Debian's /usr/bin/python3;
 # python3-distributed (Dask) runs its batches on a cluster (doc/batch.md, python/tests/test_batch.py);
 # blender (3.4, on the same Python 3.11) runs the headless tests of the add-on ICM Unwrap (doc/blender.md).
+# libopenmesh-dev gives the tests OpenMesh's meshes, FaceGraph models through CGAL's graph traits
+# (test/test_facegraph_models.cpp); the library itself does not need it.
 set -euo pipefail
 packages=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libsuitesparse-dev
-          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtinygltf-dev doxygen python3
+          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libtinygltf-dev libopenmesh-dev doxygen python3
           clang-format libopenblas0-pthread libstb-dev
           pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed blender)
 missing=()

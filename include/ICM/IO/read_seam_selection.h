@@ -89,8 +89,8 @@ bool selection_cones(
     const std::string why =
       by_index[index].size() > 1 ? " is non-manifold and was split into " + std::to_string(by_index[index].size()) +
                                      " vertices (which one is the cone?)"
-      : is_border(by_index[index].front(), mesh) ? " is on the border (a cone is an interior vertex)"
-                                                 : std::string();
+      : CGAL::is_border(by_index[index].front(), mesh) ? " is on the border (a cone is an interior vertex)"
+                                                       : std::string();
     if(!why.empty())
     {
       error = where + std::to_string(index) + why;

@@ -65,7 +65,7 @@ Status check_user_cones_and_seams(
                                      : "a user cone is not a vertex of this mesh");
   for(const auto& [v, curvature] : user_cones)
   {
-    if(is_border(v, mesh))
+    if(CGAL::is_border(v, mesh))
       return Status::wrong_parameter("a user cone is a boundary vertex (border vertices are singular already; "
                                      "prescribe interior cones only)");
     if(!std::isnan(curvature) && !(curvature < 2 * M_PI))
@@ -79,7 +79,7 @@ Status check_user_cones_and_seams(
   {
     if(!std::binary_search(mesh_halfedges.begin(), mesh_halfedges.end(), halfedge(e, mesh)))
       return Status::wrong_parameter("a user seam is not an edge of this mesh (or is the null edge)");
-    if(is_border(e, mesh))
+    if(CGAL::is_border(e, mesh))
       return Status::wrong_parameter("a user seam is a border edge (the border is cut already)");
   }
   return Status::success();
@@ -566,7 +566,7 @@ Status pack_and_write_charts(
         // The border halfedge into the same vertex, if any, shares this corner's wedge when
         // it is the corner next to the border.
         const halfedge_descriptor out = opposite(next(h, mesh), mesh);
-        if(is_border(out, mesh))
+        if(CGAL::is_border(out, mesh))
           put(uv_map, prev(out, mesh), q);
       }
     }
