@@ -235,69 +235,6 @@ TEST(Surfaces, SeveralBoundariesAreJoinedIntoOneDisk)
   EXPECT_GT(all.report.charts[0].pieces, 1);
 }
 
-TEST(Surfaces, AScreenedGiveUpTrialStopsAtACrossingAndLaysOutAChartThatPasses)
-{
-  // The give-up trials' screen (Chart_method::screen_border_crossings), on pig with its 8
-  // automatic cones (whose map folds, above) and with the greedy's first 2, laid out
-  // harmonically as a chart of 200 000 faces would be: a chart that folds stops at the
-  // layout by propagation with its crossings counted; one that lays out gets the same UVs as
-  // without the screen.
-  namespace in = ICM::internal;
-  const in::Mesh_index index = icm_test::index_file("pig.off");
-  const int nv = index.number_of_vertices();
-  const std::vector<double> prescribed(nv, std::nan(""));
-  std::vector<char> is_singular;
-  ASSERT_TRUE(in::user_singular_set(index, std::vector<char>(nv, 0), prescribed, {}, is_singular).ok());
-  ICM::Surface_parameterization_options options;
-  options.cones.max_cones = 8;
-  options.cones.max_log_scale = 0;
-  std::vector<double> expected = prescribed;
-  Eigen::VectorXd first_step;
-  std::vector<int> placed;
-  ASSERT_TRUE((in::place_automatic_cones<ICM::Intrinsic_delaunay_metric, ICM::Default_sparse_solver>(
-                 index, options, is_singular, expected, first_step, placed))
-                .ok());
-  ASSERT_EQ(placed.size(), 8u);
-  for(int count : {8, 2})
-  {
-    for(int i = count; i < 8; ++i)
-    {
-      is_singular[placed[i]] = 0;
-      expected[placed[i]] = prescribed[placed[i]];
-    }
-    in::Chart_method harmonic, screened;
-    harmonic.layout = screened.layout = ICM::Layout_method::Harmonic;
-    screened.screen_border_crossings = true;
-    ICM::Chart_report laid_chart, screened_chart;
-    ICM::Cut_mesh laid_cut, screened_cut;
-    std::vector<ICM::Uv> laid_uv, screened_uv;
-    ICM::Surface_parameterization_report report;
-    const ICM::Curvature_entropy entropy;
-    ASSERT_TRUE((in::cut_and_solve<ICM::Intrinsic_delaunay_metric, ICM::Default_sparse_solver>(
-                   index, is_singular, prescribed, expected, {}, {}, options, report, ICM::Chart_report(), laid_chart,
-                   laid_cut, laid_uv, entropy, in::Stage_progress(), harmonic))
-                  .ok());
-    ASSERT_TRUE((in::cut_and_solve<ICM::Intrinsic_delaunay_metric, ICM::Default_sparse_solver>(
-                   index, is_singular, prescribed, expected, {}, {}, options, report, ICM::Chart_report(),
-                   screened_chart, screened_cut, screened_uv, entropy, in::Stage_progress(), screened))
-                  .ok());
-    if(count == 8)
-    {
-      EXPECT_GT(laid_chart.overlapping_border_edges, 0);
-      EXPECT_GT(screened_chart.overlapping_border_edges, 0);
-      EXPECT_TRUE(screened_uv.empty());
-      EXPECT_EQ(laid_uv.size(), laid_cut.surface_vertex.size());
-    }
-    else
-    {
-      EXPECT_EQ(laid_chart.overlapping_border_edges, 0);
-      EXPECT_EQ(screened_chart.overlapping_border_edges, 0);
-      EXPECT_EQ(screened_chart.layout, "harmonic");
-      EXPECT_EQ(screened_uv, laid_uv);
-    }
-  }
-}
-
 TEST(Surfaces, SeveralComponentsArePackedSideBySide)
 {
   // A sphere and a disk in one mesh, both at their 3D scale, boxes apart.

@@ -80,12 +80,6 @@ struct Chart_method
   Diffusion_options diffusion;
   Layout_method layout = Layout_method::Automatic;
   int harmonic_layout_min_faces = 200000;
-  /// A trial that only asks whether the chart lays out in one piece (the surface pipeline's
-  /// give-up of cones): a cut chart that would be laid out harmonically is laid out by
-  /// propagation first, and given up when its border crosses itself there, before the
-  /// harmonic layout's factorization (no UVs, its crossings counted; a success, so that no
-  /// fallback metric is tried). A chart that passes is laid out as without it.
-  bool screen_border_crossings = false;
   std::function<void(const std::string&)> progress;
 
   /// Whether a chart of `faces` faces whose border is free is laid out harmonically first.
@@ -388,7 +382,7 @@ bool is_layout_laplacian_of(const Dynamic_laplacian<Solver>& laplacian, const Me
 template <class Solver, class Metric>
 Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, const Chart_method& method,
                    Inverse_curvature_map<Solver, Metric>& solver, Chart_solve_report& report, std::vector<Uv>& uv,
-                   Layout_check& check, bool& screened_out)
+                   Layout_check& check)
 {
   Curvature_map<Metric>& curvature = solver.curvature_map();
   using CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM;
@@ -412,15 +406,6 @@ Status lay_out_cut(const Chart_problem& problem, const Chart_options& options, c
   // when the propagation misses the metric's lengths: the better of the two is kept.
   const bool harmonic_first = method.harmonic_for(laid.disk.number_of_faces());
   uv.clear(); // it may hold the layout of a metric that failed
-  if(harmonic_first && method.screen_border_crossings)
-  {
-    report.overlapping_border_edges =
-      count_border_overlaps(laid.disk, layout_by_propagation(laid.disk, disk_lengths, curvature.face_angles()))
-        .crossing_pairs;
-    screened_out = report.overlapping_border_edges > 0;
-    if(screened_out)
-      return Status::success();
-  }
   for(int attempt = 0; attempt < 2; ++attempt)
   {
     const bool harmonic = harmonic_first == (attempt == 0);
@@ -535,10 +520,9 @@ Status solve_chart_in(const Chart_problem& problem, const Chart_options& options
   report.metric_summary = curvature.metric().summary(); // with the flips made on the way
   report_curvature(problem, k, report);
   Layout_check check;
-  bool screened_out = false; // by `Chart_method::screen_border_crossings`: no layout, its crossings counted
-  status = problem.cut != nullptr ? lay_out_cut(problem, options, method, solver, report, uv, check, screened_out)
+  status = problem.cut != nullptr ? lay_out_cut(problem, options, method, solver, report, uv, check)
                                   : lay_out_disk(problem, method, solver, k, weights, report, uv, check);
-  if(!status.ok() || screened_out)
+  if(!status.ok())
     return status;
   const Mesh_index& chart = problem.cut != nullptr ? problem.cut->disk : index;
   report.flipped_faces = std::max(check.flipped_faces, count_flipped_faces(chart, uv));

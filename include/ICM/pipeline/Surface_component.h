@@ -218,14 +218,14 @@ inline double relative_seam_length(const Mesh_index& index, const Cut_mesh& cut)
 
 /// Steps 4 to 7 of one component with the singular set `is_singular`: the cut, the optimum,
 /// the layout and its checks, into `chart` (from `before`, the component's figures so far),
-/// `cut` and `uv`; `method` the chart solver's choices (a give-up trial's screen).
+/// `cut` and `uv`.
 template <class Metric, class Solver, class Energy>
 Status cut_and_solve(const Mesh_index& index, const std::vector<char>& is_singular,
                      const std::vector<double>& prescribed, const std::vector<double>& expected_curvature,
                      const std::vector<char>& user_seams, Eigen::VectorXd first_step,
                      const Surface_parameterization_options& options, Surface_parameterization_report& report,
                      const Chart_report& before, Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv,
-                     const Energy& energy, const Stage_progress& progress, const Chart_method& method = Chart_method())
+                     const Energy& energy, const Stage_progress& progress)
 {
   progress("cut", cones_stage_share);
   const Clock::time_point t = Clock::now();
@@ -240,7 +240,7 @@ Status cut_and_solve(const Mesh_index& index, const std::vector<char>& is_singul
   report.seconds_cut += seconds_since(t);
 
   progress("optimum", 0.4);
-  const Status status = solve_chart<Metric, Solver>(problem, options, method, energy, chart, uv);
+  const Status status = solve_chart<Metric, Solver>(problem, options, Chart_method(), energy, chart, uv);
   report.seconds_optimum += chart.seconds_metric + chart.seconds_optimum;
   report.seconds_layout += chart.seconds_layout;
   chart.raw_overlapping_border_edges = chart.overlapping_border_edges;
@@ -276,8 +276,7 @@ constexpr double fewer_cones_distortion_factor = 2.5;
 /// all of them (`chart`, `cut`, `uv`): nearly the most cones, in the greedy's order, that lay
 /// out in one piece, found by bisection over the count (more cones, longer seams, more
 /// overlaps: monotone on the shared disks). Each trial is a solve and a layout of the whole
-/// mesh (one that folds stops at the layout by propagation, before a harmonic layout's
-/// factorization: `Chart_method::screen_border_crossings`), so the bisection stops once the count is known within an eighth of the cones (on
+/// mesh, so the bisection stops once the count is known within an eighth of the cones (on
 /// lion-head Loop x2, 267k faces: 3 trials instead of 5, one cone fewer kept). That map
 /// replaces the one given, with `chart.cones_given_up` the cones left out, when its area
 /// distortion is at most `fewer_cones_distortion_factor` times the one with all cones;
@@ -305,8 +304,6 @@ void keep_one_piece_with_fewer_cones(const Mesh_index& index, std::vector<char> 
   std::vector<Uv> kept_uv;
   int lo = 0, hi = all; // `hi` cones overlap; `lo` is the most that did not (0: none found yet)
   const int close_enough = std::max(1, all / 8);
-  Chart_method screened;
-  screened.screen_border_crossings = true;
   while(hi - lo > (lo == 0 ? 1 : close_enough))
   {
     const int mid = (lo + hi) / 2;
@@ -316,7 +313,7 @@ void keep_one_piece_with_fewer_cones(const Mesh_index& index, std::vector<char> 
     std::vector<Uv> trial_uv;
     const Status status =
       cut_and_solve<Metric, Solver>(index, is_singular, prescribed, expected_curvature, {}, {}, options, trials, before,
-                                    trial_chart, trial_cut, trial_uv, energy, Stage_progress(), screened);
+                                    trial_chart, trial_cut, trial_uv, energy, Stage_progress());
     if(status.ok() && trial_chart.overlapping_border_edges == 0)
     {
       lo = mid;
