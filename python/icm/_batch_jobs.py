@@ -47,13 +47,9 @@ def child_parameters(args):
 
 
 def child_environment():
-    """The variables a child gets: one BLAS thread, huge pages for malloc; the crash hook when the tests set it here
+    """The variables a child gets: one BLAS thread; the crash hook when the tests set it here
     (passed along so that it reaches children on any worker)."""
     environment = dict(CHILD_ENVIRONMENT)
-    # glibc's malloc on 2 MB pages, as icm_param runs (doc/cli.md, "Memory pages"); a
-    # GLIBC_TUNABLES the user set, even empty, is theirs.
-    if sys.platform.startswith("linux") and "GLIBC_TUNABLES" not in os.environ:
-        environment["GLIBC_TUNABLES"] = "glibc.malloc.hugetlb=1"
     if os.environ.get(CRASH_HOOK):
         environment[CRASH_HOOK] = os.environ[CRASH_HOOK]
     return tuple(sorted(environment.items()))
