@@ -43,7 +43,8 @@ const char* const usage =
   "         [--preview FILE] [--picture-size PIXELS] [--json] [--triangulate] [--quiet]\n"
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
-  "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact] [--cone VERTEX:DEGREES]...\n"
+  "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact]\n"
+  "         [--cone-angles auto|entropy|least-log-area] [--cone VERTEX:DEGREES]...\n"
   "         [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
   "       icm_param INPUT... [--list FILE] -O OUTDIR [-j JOBS] [--format obj|ply|gltf|glb] [--resume]\n"
@@ -401,6 +402,12 @@ void add_map_options(CLI::App& app, Arguments& args, Option_texts& texts)
     .add_option("--cone-placement", args.cone_placement,
                 "greedy cones on the linearized optimum (default) or on the exact one, from Algorithm 3's minima")
     ->check(CLI::IsMember({"linearized", "exact"}))
+    ->type_name("NAME");
+  app
+    .add_option("--cone-angles", args.cone_angles,
+                "the automatic cones' angles: the entropy's, the least linearized log^2 area's, or (auto) at --cones N "
+                "on a closed surface whichever of the two measures better on the exact map")
+    ->check(CLI::IsMember({"auto", "entropy", "least-log-area"}))
     ->type_name("NAME");
   app.add_option("--cone", texts.cone, "a cone of DEGREES at the input's VERTEX (repeatable)")
     ->check(cone_validator())

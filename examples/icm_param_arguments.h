@@ -31,6 +31,7 @@ struct Arguments
   int max_cones = -1;     // -1: automatic
   double cone_target = 0; // --cone-target: 0 unless given
   std::string cone_placement = "linearized";
+  std::string cone_angles = "auto";
   bool cones_asked = false;                  // --cones auto or N > 0, or --cone-target given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
   /// --atlas SIZE [--padding TEXELS] [--atlas-packer NAME]: unset, UVs in the mesh's units.

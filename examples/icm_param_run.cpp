@@ -150,6 +150,8 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
     options.cones.max_log_scale = args.cone_target;
   if(args.cone_placement == "exact")
     options.cones.placement = ICM::Cone_placement::Exact_optimum;
+  if(args.cone_angles != "auto")
+    options.cones.angles = args.cone_angles == "entropy" ? ICM::Cone_angles::Entropy : ICM::Cone_angles::Least_log_area;
   // A selection file's cones and seams are the singular set, as in CGAL's orbifold examples
   // (its seams alone turn automatic cones off in the library): --cones adds to them.
   if(!args.seams.empty() && !args.cones_asked)

@@ -102,6 +102,7 @@ std::vector<Bad_option<ICM::Surface_parameterization_options>> surface_cases()
     {"cones.placement", [](O& o) { o.cones.placement = static_cast<ICM::Cone_placement>(7); }},
     {"cones.ranked_candidates", [](O& o) { o.cones.ranked_candidates = 0; }},
     {"cones.sweeps", [](O& o) { o.cones.sweeps = -1; }},
+    {"cones.angles", [](O& o) { o.cones.angles = static_cast<ICM::Cone_angles>(3); }},
     {"cones.max_log_scale", [](O& o) { o.cones.max_log_scale = nan_value; }},
     {"cones.max_cones", [](O& o) { o.cones.max_cones = -1; }},
     {"initial_cones", [](O& o) { o.initial_cones = -5; }},

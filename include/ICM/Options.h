@@ -181,6 +181,24 @@ enum class Cone_placement
   Exact_optimum
 };
 
+/// What chooses the angles of the automatic cones (with the entropy, the default energy; another
+/// energy minimises over them itself).
+enum class Cone_angles
+{
+  /// At a count the user names (`Cone_options::max_log_scale` 0), on a closed surface with the
+  /// linearized placement: the exact maps with the entropy's angles and with the least log
+  /// area's, whichever measures better (no fold where the other folds, else the lower
+  /// area-weighted mean log^2 area), at most twice the entropy's time. Elsewhere the entropy's.
+  Automatic,
+  /// The entropy's: every cone keeps the mesh's own scale (u = u0), as BFF's and CEPS's do.
+  Entropy,
+  /// On a closed surface with the linearized placement, at any count: the least log area's alone (the entropy's when the exact
+  /// optimum fails at them): the angles whose linearized metric has the least area-weighted
+  /// variance of u - u0 (the linearized area-weighted mean log^2 area), each angle held within
+  /// [1, 4 pi], prescribed to the exact optimum.
+  Least_log_area
+};
+
 /// The greedy cone placement (`greedy_cones`).
 struct Cone_options
 {
@@ -205,6 +223,7 @@ struct Cone_options
   /// default's 32 cones it helps on half the shared meshes and hurts on the other half
   /// (doc/benchmarks.md, Cones), so the default is none.
   int sweeps = 0;
+  Cone_angles angles = Cone_angles::Automatic; ///< what chooses the cones' angles
   /// Unset: the run's `Surface_parameterization_options::newton` (called directly, the
   /// defaults).
   std::optional<Newton_options> newton;
@@ -223,6 +242,7 @@ inline Status check_options(const Cone_options& options, const std::string& pref
     .one_of("placement", options.placement, 2)
     .at_least("ranked_candidates", options.ranked_candidates, 1)
     .at_least("sweeps", options.sweeps, 0)
+    .one_of("angles", options.angles, 3)
     .at_least("max_cones", options.max_cones, 0)
     .nested(check_options(options.newton, prefix + "newton."))
     .status();

@@ -175,6 +175,76 @@ public:
     return lambda;
   }
 
+  /// The cone curvatures (in the order added) whose linearized metric has the least
+  /// area-weighted variance of u - u0 (the linearized area-weighted mean log^2 area, over 4),
+  /// rather than u = 0 at the cones; `log_scale` receives that metric's u - u0 per vertex. A
+  /// closed surface's only (the curvatures sum to 2 pi chi, the constant is free); false
+  /// elsewhere, or past the kept columns.
+  bool least_log_area_curvatures(Eigen::VectorXd& curvatures, Eigen::VectorXd& log_scale) const
+  {
+    // Unbounded, the linearized angles of a limb-heavy mesh leave the cone angles' range
+    // (cow, camel, armadillo at 8 cones: curvatures above 2 pi, below -15). One radian is the
+    // sharpest the exact optimum reached on the shared meshes; 4 pi the widest.
+    constexpr double min_angle = 1.0, max_angle = 4 * M_PI;
+    const int k = static_cast<int>(cones_.size());
+    if(!pinned_ || k == 0 || !has_every_column())
+      return false;
+    const int nv = index_.number_of_vertices();
+    const std::vector<double> area = vertex_areas();
+    Eigen::VectorXd weight(nv);
+    for(int v = 0; v < nv; ++v)
+      weight[v] = area[v];
+    weight /= weight.sum();
+    // u = x + G lambda + c per vertex (the pinned vertex 0 at c), centred by the weighted mean.
+    Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nv, k);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(nv);
+    for(int i = 0; i < laplacian_->size(); ++i)
+    {
+      const int v = laplacian_->vertex(i);
+      x[v] = x_[i];
+      for(int t = 0; t < k; ++t)
+        g(v, t) = columns_[t][i];
+    }
+    x.array() -= weight.dot(x);
+    g.rowwise() -= weight.transpose() * g;
+    const Eigen::MatrixXd wg = weight.asDiagonal() * g;
+    const Eigen::MatrixXd gram = g.transpose() * wg;
+    const Eigen::VectorXd gx = -wg.transpose() * x;
+    // Active set: a cone whose angle would fall below `min_angle` (or rise above
+    // `max_angle`) is held there, and the others solved again, until none does.
+    const double upper = 2 * M_PI - min_angle, lower = 2 * M_PI - max_angle;
+    std::vector<double> held(k, std::nan(""));
+    for(int round = 0; round <= k; ++round)
+    {
+      Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(k + 1, k + 1);
+      Eigen::VectorXd rhs(k + 1);
+      kkt.topLeftCorner(k, k) = gram;
+      kkt.block(0, k, k, 1).setOnes();
+      kkt.block(k, 0, 1, k).setOnes();
+      rhs.head(k) = gx;
+      rhs[k] = -sum_b_;
+      for(int t = 0; t < k; ++t)
+        if(!std::isnan(held[t]))
+        {
+          kkt.row(t).setZero();
+          kkt(t, t) = 1;
+          rhs[t] = held[t];
+        }
+      curvatures = kkt.fullPivLu().solve(rhs).head(k);
+      bool changed = false;
+      for(int t = 0; t < k; ++t)
+        if(std::isnan(held[t]) && (curvatures[t] > upper || curvatures[t] < lower))
+        {
+          held[t] = curvatures[t] > upper ? upper : lower;
+          changed = true;
+        }
+      if(!changed)
+        break;
+    }
+    log_scale = x + g * curvatures;
+    return curvatures.allFinite() && log_scale.allFinite();
+  }
+
   /// The change of the optimum per unit of curvature taken out at vertex `v` with the cones
   /// so far held at u = 0: a new cone at v moves u by -u_v / h_v(v) times this h.
   Eigen::VectorXd unit_response(int v) const

@@ -136,9 +136,21 @@ struct Cone_selection
   /// The linearized optimum's u - u0 per vertex with these cones (empty from the exact
   /// placement): the first step of the chart's Newton from u0, without its factorization.
   Eigen::VectorXd log_scale;
+  /// The cones' curvatures (in the order of `cones`) whose linearized metric has the least
+  /// log^2 area (`Cone_angles`), and that metric's u - u0 per vertex; empty when not asked
+  /// for or out of the linearized placement's reach.
+  std::vector<double> least_log_area_curvatures;
+  Eigen::VectorXd least_log_area_log_scale;
   std::string message; ///< empty, or why a solve failed
   bool ok() const { return message.empty(); }
 };
+
+/// Whether the automatic cones try the least log area's angles (`Cone_angles`).
+inline bool tries_least_log_area_angles(const Cone_options& options)
+{
+  return options.angles == Cone_angles::Least_log_area ||
+         (options.angles == Cone_angles::Automatic && options.max_log_scale == 0);
+}
 
 /// The `count` non-singular vertices with the largest |u| among those where |u| is a local
 /// maximum over the ring (the largest of all comes first), largest first.
@@ -275,6 +287,12 @@ Cone_selection linearized_greedy_cones(Problem& problem, const internal::Mesh_in
       for(int v : selection.cones) // the seeds were fixed from the start: unknown
         selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
       selection.log_scale = problem.solve();
+      Eigen::VectorXd least;
+      if(user_cones == 0 && tries_least_log_area_angles(options) &&
+         problem.least_log_area_curvatures(least, selection.least_log_area_log_scale))
+        for(int v : selection.cones) // a seed's angle is not the least log area's: NaN
+          selection.least_log_area_curvatures.push_back(
+            problem.position_of(v) < least.size() ? least[problem.position_of(v)] : std::nan(""));
       progress.finish();
       return selection;
     }

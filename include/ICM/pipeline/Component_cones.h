@@ -119,6 +119,16 @@ Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, st
   return linearized_greedy_cones(*problem, index, seeds, options);
 }
 
+/// Angles for the automatic cones other than the entropy's, to be tried on the exact map: per
+/// vertex the curvature to prescribe (NaN: free), and their linearized metric's u - u0, the
+/// chart's first Newton step. Empty: none.
+struct Cone_angle_trial
+{
+  std::vector<double> prescribed;
+  Eigen::VectorXd first_step;
+  bool empty() const { return prescribed.empty(); }
+};
+
 /// Automatic cones, where the surface wants them: greedy placement from `cone_seeds`, in the
 /// class the optimum is computed in (cones placed by the circle packing's conformal factor
 /// serve the default metric worse: doc/benchmarks.md), then in the circle packing's.
@@ -126,11 +136,13 @@ Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, st
 /// for it (NaN when it predicts none); `first_step` the chart's first Newton step from u0
 /// (empty: none), the linearized optimum with the cones placed, or when a surface with a
 /// border wants no cone its free-boundary optimum itself, where that Newton then ends.
-/// `placed` receives the cones added, in the order the greedy placed them.
+/// `placed` receives the cones added, in the order the greedy placed them; `least_log_area`
+/// the angles of the least linearized log^2 area where the options ask for them
+/// (`Cone_angles`), empty elsewhere.
 template <class Metric, class Solver>
 Status place_automatic_cones(const Mesh_index& index, const Surface_parameterization_options& options,
                              std::vector<char>& is_singular, std::vector<double>& expected_curvature,
-                             Eigen::VectorXd& first_step, std::vector<int>& placed,
+                             Eigen::VectorXd& first_step, std::vector<int>& placed, Cone_angle_trial& least_log_area,
                              const Stage_progress& progress = Stage_progress())
 {
   const Circle_packing_metric packing(index);
@@ -174,6 +186,14 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
     is_singular[v] = 1;
     if(i < selection.curvatures.size() && std::isnan(expected_curvature[v]))
       expected_curvature[v] = selection.curvatures[i];
+  }
+  if(!selection.least_log_area_curvatures.empty())
+  {
+    least_log_area.prescribed = expected_curvature;
+    std::fill(least_log_area.prescribed.begin(), least_log_area.prescribed.end(), std::nan(""));
+    for(std::size_t i = 0; i < selection.cones.size(); ++i)
+      least_log_area.prescribed[selection.cones[i]] = selection.least_log_area_curvatures[i];
+    least_log_area.first_step = std::move(selection.least_log_area_log_scale);
   }
   first_step = std::move(selection.log_scale);
   return Status::success();

@@ -333,6 +333,81 @@ void keep_one_piece_with_fewer_cones(const Mesh_index& index, std::vector<char> 
   chart.cones_given_up = all - lo;
 }
 
+/// Whether the chart `a` (`cut_a`, `uv_a`) measures better than `b`: it lays out without an
+/// overlap where `b` overlaps, or as `b` does with less area distortion (area-weighted mean
+/// log^2 area, what the report measures).
+inline bool measures_better(const Mesh_index& index, const Chart_report& a, const Cut_mesh& cut_a,
+                            const std::vector<Uv>& uv_a, const Chart_report& b, const Cut_mesh& cut_b,
+                            const std::vector<Uv>& uv_b)
+{
+  const bool a_folds = a.overlapping_border_edges > 0 || a.flipped_faces > 0;
+  const bool b_folds = b.overlapping_border_edges > 0 || b.flipped_faces > 0;
+  if(a_folds != b_folds)
+    return !a_folds;
+  return mean_log_area_squared(index, cut_a, uv_a) < mean_log_area_squared(index, cut_b, uv_b);
+}
+
+/// `trial` moved the fraction `t` of the way from the entropy's angles (the placement's
+/// predictions `expected_curvature`) to its own. The linearized metric is affine in the
+/// angles, so its first step moves the same way from the entropy's `entropy_step`.
+inline Cone_angle_trial part_way(const Cone_angle_trial& trial, const std::vector<double>& expected_curvature,
+                                 const Eigen::VectorXd& entropy_step, double t)
+{
+  Cone_angle_trial moved = trial;
+  for(std::size_t v = 0; v < moved.prescribed.size(); ++v)
+    if(!std::isnan(moved.prescribed[v]))
+      moved.prescribed[v] = expected_curvature[v] + t * (trial.prescribed[v] - expected_curvature[v]);
+  if(entropy_step.size() == trial.first_step.size())
+    moved.first_step = entropy_step + t * (trial.first_step - entropy_step);
+  else
+    moved.first_step.resize(0);
+  return moved;
+}
+
+/// `cut_and_solve` with the automatic cones at the entropy's angles and at those of `trial`
+/// (the least linearized log^2 area), keeping the exact map that measures better
+/// (`measures_better`); when the trial's does not, halfway between the two as well (the
+/// extreme angles of the trial fold the layout or leave Newton's reach on limb-heavy meshes,
+/// camel or bull at 8 cones). With `Cone_angles::Least_log_area` the trial's alone, unless it
+/// fails.
+template <class Metric, class Solver, class Energy>
+Status cut_and_solve_with_the_better_angles(
+  const Mesh_index& index, const std::vector<char>& is_singular, const std::vector<double>& prescribed,
+  const std::vector<double>& expected_curvature, Eigen::VectorXd first_step, const Cone_angle_trial& trial,
+  const Surface_parameterization_options& options, Surface_parameterization_report& report, const Chart_report& before,
+  Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy, const Stage_progress& progress)
+{
+  const auto solve = [&](const std::vector<double>& angles, Eigen::VectorXd step, Chart_report& c, Cut_mesh& m,
+                         std::vector<Uv>& w) {
+    return cut_and_solve<Metric, Solver>(index, is_singular, angles, expected_curvature, {}, std::move(step), options,
+                                         report, before, c, m, w, energy, progress);
+  };
+  const bool trial_alone = options.cones.angles == Cone_angles::Least_log_area;
+  Status kept = trial_alone ? solve(trial.prescribed, trial.first_step, chart, cut, uv)
+                            : solve(prescribed, first_step, chart, cut, uv);
+  if(trial_alone && kept.ok())
+    return kept;
+  if(trial_alone)
+    return solve(prescribed, std::move(first_step), chart, cut, uv);
+  for(const double t : {1.0, 0.5})
+  {
+    const Cone_angle_trial angles = t == 1 ? trial : part_way(trial, expected_curvature, first_step, t);
+    Chart_report trial_chart;
+    Cut_mesh trial_cut;
+    std::vector<Uv> trial_uv;
+    const Status status = solve(angles.prescribed, angles.first_step, trial_chart, trial_cut, trial_uv);
+    if(status.ok() && (!kept.ok() || measures_better(index, trial_chart, trial_cut, trial_uv, chart, cut, uv)))
+    {
+      kept = status;
+      chart = std::move(trial_chart);
+      cut = std::move(trial_cut);
+      uv = std::move(trial_uv);
+      break;
+    }
+  }
+  return kept;
+}
+
 /// One component: cones, cut, optimum, layout, checks, overlaps. `uv` receives one UV per
 /// wedge of `cut.disk`. `user_seams` (per edge; empty: none) are taken as the cut as given,
 /// their ends and branch points singular with a free angle, and no cone is added.
@@ -351,9 +426,10 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   std::vector<double> expected_curvature = prescribed;
   Eigen::VectorXd first_step;
   std::vector<int> placed;
+  Cone_angle_trial least_log_area;
   if(options.automatic_cones && options.cones.max_cones > 0 && user_seams.empty())
     if(const Status status = place_automatic_cones<Metric, Solver>(index, options, is_singular, expected_curvature,
-                                                                   first_step, placed, progress);
+                                                                   first_step, placed, least_log_area, progress);
        !status.ok())
       return status;
   if(index.number_of_boundary_loops() == 0 && index.euler_characteristic() > 0 &&
@@ -362,9 +438,14 @@ Status parameterize_component(const Mesh_index& index, const std::vector<char>& 
   report.seconds_cones += seconds_since(t);
 
   const Chart_report before = chart;
+  // Another energy is minimised over the cones' angles from the entropy's: it has its own.
   const Status status =
-    cut_and_solve<Metric, Solver>(index, is_singular, prescribed, expected_curvature, user_seams, std::move(first_step),
-                                  options, report, before, chart, cut, uv, energy, progress);
+    least_log_area.empty() || !std::is_same<Energy, Curvature_entropy>::value
+      ? cut_and_solve<Metric, Solver>(index, is_singular, prescribed, expected_curvature, user_seams,
+                                      std::move(first_step), options, report, before, chart, cut, uv, energy, progress)
+      : cut_and_solve_with_the_better_angles<Metric, Solver>(index, is_singular, prescribed, expected_curvature,
+                                                             std::move(first_step), least_log_area, options, report,
+                                                             before, chart, cut, uv, energy, progress);
   if(!status.ok() || !options.remove_overlaps || chart.overlapping_border_edges == 0)
     return status;
   // An exact count (`max_log_scale` 0) is the user's; an automatic one gives cones up first.
