@@ -47,6 +47,10 @@ struct Cut_graph_options
   /// than 2 pi overlaps itself), so the cut passes seams through it until no wedge would
   /// be wider than 0.9 of 2 pi, at least ceil(angle / 2 pi) of them.
   std::vector<double> cone_curvatures;
+  /// Per edge, the length the paths joining the cones minimise (empty: the 3D length), such
+  /// as the flat metric's: its shortest paths are nearly straight in the layout, where a 3D
+  /// shortest path along a limb can lay its two sides over each other.
+  std::vector<double> path_lengths;
 };
 
 /// The seam edges of a cut and what went into them.
@@ -90,8 +94,8 @@ inline void mark_path_to_source(const Mesh_index& index, const std::vector<int>&
 /// One search instead of one per terminal, and the same factor-2 bound as growing the tree
 /// terminal by terminal. Paths never cross a border vertex (each is the source of its loop's
 /// region), so no path closes a loop with a border. Returns the number of seam edges added.
-inline int join_terminals(const Mesh_index& index, const Surface_graph& graph, const std::vector<int>& interior_cones,
-                          std::vector<char>& is_seam)
+inline int join_terminals(const Mesh_index& index, const Surface_graph& graph, const std::vector<double>& lengths,
+                          const std::vector<int>& interior_cones, std::vector<char>& is_seam)
 {
   const int loops = index.number_of_boundary_loops();
   const int terminals = loops + static_cast<int>(interior_cones.size());
@@ -120,7 +124,7 @@ inline int join_terminals(const Mesh_index& index, const Surface_graph& graph, c
   {
     const int a = index.edges[e][0], b = index.edges[e][1];
     if(label[a] != label[b] && label[a] >= 0 && label[b] >= 0) // -1: unreachable, a second component
-      bridges.emplace_back(distance[a] + edge_length(index, e) + distance[b], e);
+      bridges.emplace_back(distance[a] + (lengths.empty() ? edge_length(index, e) : lengths[e]) + distance[b], e);
   }
   std::sort(bridges.begin(), bridges.end());
 
@@ -299,9 +303,15 @@ inline Cut_graph_result cut_graph(const internal::Mesh_index& index, const std::
     return result;
   }
 
-  const Surface_graph graph = make_surface_graph(index);
+  if(!options.path_lengths.empty() && options.path_lengths.size() != index.edges.size())
+  {
+    result.status = Status::wrong_parameter("path_lengths has " + std::to_string(options.path_lengths.size()) +
+                                            " entries for " + std::to_string(index.edges.size()) + " edges");
+    return result;
+  }
+  const Surface_graph graph = make_surface_graph(index, options.path_lengths);
   result.is_seam.assign(index.number_of_edges(), 0);
-  result.number_of_tree_edges = join_terminals(index, graph, interior_cones, result.is_seam);
+  result.number_of_tree_edges = join_terminals(index, graph, options.path_lengths, interior_cones, result.is_seam);
   if(index.genus() > 0)
   {
     result.number_of_generators = add_homology_generators(index, graph, interior_cones, result.is_seam);

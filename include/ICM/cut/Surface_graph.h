@@ -21,7 +21,8 @@
 namespace ICM {
 namespace internal {
 namespace cutting {
-/// An arc of the surface graph: the mesh edge it runs along and its 3D length.
+/// An arc of the surface graph: the mesh edge it runs along and its length (3D, or the one
+/// the cut is asked to measure paths with).
 struct Surface_arc
 {
   int edge = -1;
@@ -32,7 +33,8 @@ struct Surface_arc
 /// form: built once per cut, then shared by every shortest-path search.
 using Surface_graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, Surface_arc>;
 
-inline Surface_graph make_surface_graph(const Mesh_index& index)
+/// `lengths`, per edge, are what the shortest paths measure (empty: the 3D lengths).
+inline Surface_graph make_surface_graph(const Mesh_index& index, const std::vector<double>& lengths = {})
 {
   std::vector<std::pair<std::size_t, std::size_t>> arcs;
   std::vector<Surface_arc> properties;
@@ -41,7 +43,7 @@ inline Surface_graph make_surface_graph(const Mesh_index& index)
   for(int e = 0; e < index.number_of_edges(); ++e)
   {
     const std::size_t a = index.edges[e][0], b = index.edges[e][1];
-    const Surface_arc arc{e, edge_length(index, e)};
+    const Surface_arc arc{e, lengths.empty() ? edge_length(index, e) : lengths[e]};
     arcs.emplace_back(a, b);
     properties.push_back(arc);
     arcs.emplace_back(b, a);
