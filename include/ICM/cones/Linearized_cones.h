@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -189,27 +190,29 @@ public:
     const int k = static_cast<int>(cones_.size());
     if(!pinned_ || k == 0 || !has_every_column())
       return false;
-    const int nv = index_.number_of_vertices();
+    // u = x + G lambda + c per vertex (the pinned vertex at c, 0 in x and G), centred by the
+    // area-weighted mean: the k x k Gram matrix of G's centred columns, read column by column
+    // (no nv x k copy of G).
     const std::vector<double> area = vertex_areas();
-    Eigen::VectorXd weight(nv);
-    for(int v = 0; v < nv; ++v)
-      weight[v] = area[v];
-    weight /= weight.sum();
-    // u = x + G lambda + c per vertex (the pinned vertex 0 at c), centred by the weighted mean.
-    Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nv, k);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(nv);
-    for(int i = 0; i < laplacian_->size(); ++i)
+    const double total_area = std::accumulate(area.begin(), area.end(), 0.0);
+    const int n = laplacian_->size();
+    Eigen::VectorXd weight(n);
+    for(int i = 0; i < n; ++i)
+      weight[i] = area[laplacian_->vertex(i)] / total_area;
+    const auto column = [this](int t) { return columns_[t].cast<double>(); };
+    Eigen::VectorXd mean(k);
+    for(int t = 0; t < k; ++t)
+      mean[t] = weight.dot(column(t));
+    const double mean_x = weight.dot(x_);
+    Eigen::MatrixXd gram(k, k);
+    Eigen::VectorXd gx(k);
+    for(int t = 0; t < k; ++t)
     {
-      const int v = laplacian_->vertex(i);
-      x[v] = x_[i];
-      for(int t = 0; t < k; ++t)
-        g(v, t) = columns_[t][i];
+      const Eigen::VectorXd weighted = weight.cwiseProduct(column(t));
+      for(int r = 0; r <= t; ++r)
+        gram(t, r) = gram(r, t) = weighted.dot(column(r)) - mean[t] * mean[r];
+      gx[t] = -(weighted.dot(x_) - mean[t] * mean_x);
     }
-    x.array() -= weight.dot(x);
-    g.rowwise() -= weight.transpose() * g;
-    const Eigen::MatrixXd wg = weight.asDiagonal() * g;
-    const Eigen::MatrixXd gram = g.transpose() * wg;
-    const Eigen::VectorXd gx = -wg.transpose() * x;
     // Active set: a cone whose angle would fall below `min_angle` (or rise above
     // `max_angle`) is held there, and the others solved again, until none does.
     const double upper = 2 * M_PI - min_angle, lower = 2 * M_PI - max_angle;
@@ -241,7 +244,14 @@ public:
       if(!changed)
         break;
     }
-    log_scale = x + g * curvatures;
+    log_scale = Eigen::VectorXd::Constant(index_.number_of_vertices(), -mean_x - mean.dot(curvatures));
+    for(int i = 0; i < n; ++i)
+    {
+      double u = x_[i];
+      for(int t = 0; t < k; ++t)
+        u += columns_[t][i] * curvatures[t];
+      log_scale[laplacian_->vertex(i)] += u;
+    }
     return curvatures.allFinite() && log_scale.allFinite();
   }
 

@@ -189,8 +189,7 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
   }
   if(!selection.least_log_area_curvatures.empty())
   {
-    least_log_area.prescribed = expected_curvature;
-    std::fill(least_log_area.prescribed.begin(), least_log_area.prescribed.end(), std::nan(""));
+    least_log_area.prescribed.assign(expected_curvature.size(), std::nan(""));
     for(std::size_t i = 0; i < selection.cones.size(); ++i)
       least_log_area.prescribed[selection.cones[i]] = selection.least_log_area_curvatures[i];
     least_log_area.first_step = std::move(selection.least_log_area_log_scale);

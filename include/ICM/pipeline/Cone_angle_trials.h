@@ -13,7 +13,6 @@
 #include <ICM/cut/Cut_mesh.h>
 #include <ICM/internal/Mesh_index.h>
 
-#include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -23,18 +22,10 @@
 namespace ICM {
 namespace internal {
 
-/// Whether the chart `a` (`cut_a`, `uv_a`) measures better than `b`: it lays out without an
-/// overlap where `b` overlaps, or as `b` does with less area distortion (area-weighted mean
-/// log^2 area, what the report measures).
-inline bool measures_better(const Mesh_index& index, const Chart_report& a, const Cut_mesh& cut_a,
-                            const std::vector<Uv>& uv_a, const Chart_report& b, const Cut_mesh& cut_b,
-                            const std::vector<Uv>& uv_b)
+/// Whether the layout of `chart` folds: a flipped face or two border edges that cross.
+inline bool folds(const Chart_report& chart)
 {
-  const bool a_folds = a.overlapping_border_edges > 0 || a.flipped_faces > 0;
-  const bool b_folds = b.overlapping_border_edges > 0 || b.flipped_faces > 0;
-  if(a_folds != b_folds)
-    return !a_folds;
-  return mean_log_area_squared(index, cut_a, uv_a) < mean_log_area_squared(index, cut_b, uv_b);
+  return chart.overlapping_border_edges > 0 || chart.flipped_faces > 0;
 }
 
 /// `trial` moved the fraction `t` of the way from the entropy's angles (the placement's
@@ -65,10 +56,10 @@ inline std::vector<double> flat_path_lengths(const Mesh_index& index, const Eige
 }
 
 /// `cut_and_solve` with the automatic cones at the entropy's angles and at those of `trial`
-/// (the least linearized log^2 area), keeping the exact map that measures better
-/// (`measures_better`); when the trial's does not, halfway between the two as well (the
-/// extreme angles of the trial fold the layout or leave Newton's reach on limb-heavy meshes,
-/// camel or bull at 8 cones). A map that folds is tried again cut along its linearized flat
+/// (the least linearized log^2 area), keeping the exact map that measures better (no fold
+/// where the other folds, else less area distortion); when the trial's does not, halfway
+/// between the two as well (the extreme angles of the trial fold the layout or leave
+/// Newton's reach on limb-heavy meshes, camel or bull at 8 cones). A map that folds is tried again cut along its linearized flat
 /// metric's shortest paths rather than the 3D ones. With `Cone_angles::Least_log_area` the
 /// trial's angles alone, unless they fail.
 template <class Metric, class Solver, class Energy>
@@ -78,12 +69,14 @@ Status cut_and_solve_with_the_better_angles(
   const Surface_parameterization_options& options, Surface_parameterization_report& report, const Chart_report& before,
   Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy, const Stage_progress& progress)
 {
-  Status kept = Status::failure(CGAL::Surface_mesh_parameterization::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM, "not solved");
+  Status first_failure; // the reason, should no map be kept
   double kept_log_area = 0;
   int maps_kept = 0;
-  // Solves at `angles` and keeps the map if it measures better than the one kept. Returns
-  // whether the map folds but might not with the flat cut and measure better: it was kept,
-  // or has less distortion than the one kept (the cut changes little of it).
+  // Solves at `angles` and keeps the map if it measures better than the one kept: no fold
+  // where that one folds, or as it does with less area distortion (area-weighted mean log^2
+  // area, what the report measures). Returns whether the map folds but might not with the
+  // flat cut and measure better: it was kept, or has less distortion than the one kept (the
+  // cut changes little of it).
   const auto consider = [&](const std::vector<double>& angles, const Eigen::VectorXd& step, bool flat_cut) {
     Chart_report trial_chart;
     Cut_mesh trial_cut;
@@ -93,17 +86,16 @@ Status cut_and_solve_with_the_better_angles(
       trial_uv, energy, progress, flat_cut ? flat_path_lengths(index, step) : std::vector<double>());
     if(!status.ok())
     {
-      if(!kept.ok() && kept.message == "not solved")
-        kept = status; // the reason, should nothing succeed
+      if(first_failure.ok())
+        first_failure = status;
       return false;
     }
-    const bool folds = trial_chart.overlapping_border_edges > 0 || trial_chart.flipped_faces > 0;
     const double log_area = mean_log_area_squared(index, trial_cut, trial_uv);
-    const bool better = !kept.ok() || measures_better(index, trial_chart, trial_cut, trial_uv, chart, cut, uv);
-    const bool promising = folds && (better || log_area < kept_log_area);
+    const bool better =
+      maps_kept == 0 || (folds(trial_chart) != folds(chart) ? !folds(trial_chart) : log_area < kept_log_area);
+    const bool promising = folds(trial_chart) && (better || log_area < kept_log_area);
     if(better)
     {
-      kept = status;
       kept_log_area = log_area;
       ++maps_kept;
       chart = std::move(trial_chart);
@@ -118,14 +110,14 @@ Status cut_and_solve_with_the_better_angles(
     const int maps_before = maps_kept;
     if(consider(angles, step, false) && step.size() == index.number_of_vertices())
       consider(angles, step, true);
-    return maps_kept > maps_before && chart.overlapping_border_edges == 0 && chart.flipped_faces == 0;
+    return maps_kept > maps_before && !folds(chart);
   };
   if(options.cones.angles == Cone_angles::Least_log_area)
   {
     consider_both_cuts(trial.prescribed, trial.first_step);
-    if(!kept.ok())
+    if(maps_kept == 0)
       consider_both_cuts(prescribed, first_step);
-    return kept;
+    return maps_kept > 0 ? Status::success() : first_failure;
   }
   consider_both_cuts(prescribed, first_step);
   for(const double t : {1.0, 0.5})
@@ -134,7 +126,7 @@ Status cut_and_solve_with_the_better_angles(
     if(consider_both_cuts(angles.prescribed, angles.first_step))
       break; // kept, unfolded: a smaller step towards the trial's angles would measure worse
   }
-  return kept;
+  return maps_kept > 0 ? Status::success() : first_failure;
 }
 
 } // namespace internal
