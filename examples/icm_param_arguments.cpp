@@ -44,7 +44,7 @@ const char* const usage =
   "         [--metric intrinsic-delaunay|vertex-scaling|inversive-distance|circle-packing]\n"
   "         [--energy entropy|u-square|area|angle|log-area] [--boundary free|circle|square|circle-domain]\n"
   "         [--cones auto|N] [--cone-target T] [--cone-placement linearized|exact]\n"
-  "         [--cone-angles auto|entropy|least-log-area] [--cone VERTEX:DEGREES]...\n"
+  "         [--cone-angles auto|entropy|least-log-area] [--no-cone-sweeps] [--cone VERTEX:DEGREES]...\n"
   "         [--seams FILE.selection.txt] [--keep-overlaps]\n"
   "         [--atlas SIZE [--padding TEXELS] [--atlas-packer skyline|shelf]]\n"
   "       icm_param INPUT... [--list FILE] -O OUTDIR [-j JOBS] [--format obj|ply|gltf|glb] [--resume]\n"
@@ -409,6 +409,9 @@ void add_map_options(CLI::App& app, Arguments& args, Option_texts& texts)
                 "on a closed surface whichever of the two measures better on the exact map")
     ->check(CLI::IsMember({"auto", "entropy", "least-log-area"}))
     ->type_name("NAME");
+  app.add_flag("--no-cone-sweeps", args.no_cone_sweeps,
+               "at --cones N on a closed surface, keep the greedy's cones where they are (by default a cone moves "
+               "where the exact optimum then has less area distortion)");
   app.add_option("--cone", texts.cone, "a cone of DEGREES at the input's VERTEX (repeatable)")
     ->check(cone_validator())
     ->type_name("VERTEX:DEGREES");

@@ -32,6 +32,7 @@ struct Arguments
   double cone_target = 0; // --cone-target: 0 unless given
   std::string cone_placement = "linearized";
   std::string cone_angles = "auto";
+  bool no_cone_sweeps = false;               // --no-cone-sweeps: the greedy's cones as placed
   bool cones_asked = false;                  // --cones auto or N > 0, or --cone-target given
   std::vector<std::pair<int, double>> cones; // vertex index, cone angle in degrees
   /// --atlas SIZE [--padding TEXELS] [--atlas-packer NAME]: unset, UVs in the mesh's units.

@@ -150,6 +150,7 @@ std::string run_surface(const Arguments& args, const Mesh& mesh, const std::map<
     options.cones.max_log_scale = args.cone_target;
   if(args.cone_placement == "exact")
     options.cones.placement = ICM::Cone_placement::Exact_optimum;
+  options.cones.exact_sweeps = !args.no_cone_sweeps;
   if(args.cone_angles != "auto")
     options.cones.angles = args.cone_angles == "entropy" ? ICM::Cone_angles::Entropy : ICM::Cone_angles::Least_log_area;
   // A selection file's cones and seams are the singular set, as in CGAL's orbifold examples

@@ -224,6 +224,12 @@ struct Cone_options
   /// (doc/benchmarks.md, Cones), so the default is none.
   int sweeps = 0;
   Cone_angles angles = Cone_angles::Automatic; ///< what chooses the cones' angles
+  /// At a named count (`max_log_scale` 0) on a closed surface, with the linearized
+  /// placement: after the greedy, cones moved one at a time (the weakest to the largest
+  /// |u - u0|, or each to its ring neighbour of largest |u - u0|), a move kept only when the
+  /// exact entropy optimum it gives has less area distortion; until no move is kept or about
+  /// the rest of the call's time is spent (cones/Exact_cone_sweeps.h).
+  bool exact_sweeps = true;
   /// Unset: the run's `Surface_parameterization_options::newton` (called directly, the
   /// defaults).
   std::optional<Newton_options> newton;

@@ -231,6 +231,29 @@ void move_cones_to_the_largest_scale(Problem& problem, const internal::Mesh_inde
   }
 }
 
+/// The linearized figures of the cones `selection.cones` (those of `problem`, the seeds
+/// fixed in it from the start): their predicted curvatures (NaN for a seed), the optimum's
+/// u - u0 and, where `options` ask for them and there are no seeds, the least log^2 area's
+/// angles with their u - u0.
+template <class Problem>
+void read_linearized_selection(const Problem& problem, bool no_seeds, const Cone_options& options,
+                               Cone_selection& selection)
+{
+  const Eigen::VectorXd k = problem.cone_curvatures();
+  selection.curvatures.clear();
+  for(int v : selection.cones)
+    selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
+  selection.log_scale = problem.solve();
+  selection.least_log_area_curvatures.clear();
+  selection.least_log_area_log_scale.resize(0);
+  Eigen::VectorXd least;
+  if(no_seeds && tries_least_log_area_angles(options) &&
+     problem.least_log_area_curvatures(least, selection.least_log_area_log_scale))
+    for(int v : selection.cones)
+      selection.least_log_area_curvatures.push_back(
+        problem.position_of(v) < least.size() ? least[problem.position_of(v)] : std::nan(""));
+}
+
 /// Greedy cone placement on the linearized optimum (cones/Linearized_cones.h): the singular
 /// set starts as the border plus `seeds` (plus, on a closed surface without one, the extreme
 /// of the linearized uniform-curvature metric); each round makes a cone of the non-singular
@@ -283,16 +306,7 @@ Cone_selection linearized_greedy_cones(Problem& problem, const internal::Mesh_in
     if(peaks.empty() || static_cast<int>(selection.cones.size()) >= wanted || small_enough)
     {
       move_cones_to_the_largest_scale(problem, index, user_cones, options.sweeps, is_singular, selection);
-      const Eigen::VectorXd k = problem.cone_curvatures();
-      for(int v : selection.cones) // the seeds were fixed from the start: unknown
-        selection.curvatures.push_back(problem.position_of(v) < k.size() ? k[problem.position_of(v)] : std::nan(""));
-      selection.log_scale = problem.solve();
-      Eigen::VectorXd least;
-      if(user_cones == 0 && tries_least_log_area_angles(options) &&
-         problem.least_log_area_curvatures(least, selection.least_log_area_log_scale))
-        for(int v : selection.cones) // a seed's angle is not the least log area's: NaN
-          selection.least_log_area_curvatures.push_back(
-            problem.position_of(v) < least.size() ? least[problem.position_of(v)] : std::nan(""));
+      read_linearized_selection(problem, user_cones == 0, options, selection);
       progress.finish();
       return selection;
     }

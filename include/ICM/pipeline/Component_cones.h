@@ -7,6 +7,7 @@
 
 #include <ICM/Status.h>
 #include <ICM/Options.h>
+#include <ICM/cones/Exact_cone_sweeps.h>
 #include <ICM/cones/Singular_vertices.h>
 #include <ICM/curvature/Inverse_curvature_map.h>
 #include <ICM/metrics/Circle_packing_metric.h>
@@ -119,6 +120,31 @@ Cone_selection greedy_cones_in(const Mesh_index& index, const Metric& metric, st
   return linearized_greedy_cones(*problem, index, seeds, options);
 }
 
+/// The greedy's cones in `selection`, read from the linearized `problem`, moved by
+/// `sweep_cones_on_the_exact_optimum` from its optimum, in `problem` as well, whose figures
+/// `selection` then reads again. `Cone_options::exact_sweeps` on a closed surface at a named
+/// count without user cones; any other is left as it is.
+template <class Solver, class Metric, class Problem>
+void sweep_on_the_exact_optimum(const Mesh_index& index, const Metric& metric, Problem& problem,
+                                const Surface_parameterization_options& options, Cone_selection& selection)
+{
+  std::vector<char> is_singular(index.number_of_vertices(), 0);
+  for(int v : selection.cones)
+    is_singular[v] = 1;
+  const std::vector<int> greedy = selection.cones;
+  const Exact_sweep_report swept = sweep_cones_on_the_exact_optimum<Solver>(
+    index, metric, is_singular, selection.cones, selection.log_scale, newton_of(options.cones.newton, options.newton));
+  if(swept.moves_kept == 0)
+    return;
+  for(std::size_t i = 0; i < greedy.size(); ++i)
+    if(selection.cones[i] != greedy[i])
+    {
+      problem.remove_cone(problem.position_of(greedy[i]));
+      problem.add_cone(selection.cones[i]);
+    }
+  read_linearized_selection(problem, true, options.cones, selection);
+}
+
 /// Angles for the automatic cones other than the entropy's, to be tried on the exact map: per
 /// vertex the curvature to prescribe (NaN: free), and their linearized metric's u - u0, the
 /// chart's first Newton step. Empty: none.
@@ -174,6 +200,9 @@ Status place_automatic_cones(const Mesh_index& index, const Surface_parameteriza
     progress("cones", cones_stage_share * reported);
   };
   Cone_selection selection = greedy_cones_in<Solver>(index, metric, problem, seeds, cones);
+  if(selection.ok() && problem && closed && seeds.empty() && options.cones.exact_sweeps &&
+     options.cones.max_log_scale == 0)
+    sweep_on_the_exact_optimum<Solver>(index, metric, *problem, options, selection);
   if(!selection.ok() && options.fall_back_to_circle_packing)
     selection = greedy_cones<Solver>(index, packing, seeds, cones);
   if(!selection.ok())

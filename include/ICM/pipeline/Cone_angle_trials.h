@@ -16,6 +16,8 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <utility>
 #include <vector>
 
@@ -56,12 +58,16 @@ inline std::vector<double> flat_path_lengths(const Mesh_index& index, const Eige
 }
 
 /// `cut_and_solve` with the automatic cones at the entropy's angles and at those of `trial`
-/// (the least linearized log^2 area), keeping the exact map that measures better (no fold
-/// where the other folds, else less area distortion); when the trial's does not, halfway
-/// between the two as well (the extreme angles of the trial fold the layout or leave
-/// Newton's reach on limb-heavy meshes, camel or bull at 8 cones). A map that folds is tried again cut along its linearized flat
-/// metric's shortest paths rather than the 3D ones. With `Cone_angles::Least_log_area` the
-/// trial's angles alone, unless they fail.
+/// (the least linearized log^2 area), keeping the exact map that measures better; when the
+/// trial's does not, halfway between the two as well (the extreme angles of the trial fold
+/// the layout or leave Newton's reach on limb-heavy meshes, camel or bull at 8 cones). A map
+/// measures better with a lower area-weighted mean log^2 area (what the report measures),
+/// one that folds (the overlap removal cuts it) taken at `fewer_cones_distortion_factor`
+/// times its own. A map that folds is tried again cut along its linearized flat metric's
+/// shortest paths rather than the 3D ones, from its own optimum. Only the entropy's angles,
+/// the map of last resort, fall back to the circle packing: the others' maps there fold
+/// or fail as well, at the time of another solve (camel, bull). With
+/// `Cone_angles::Least_log_area` the trial's angles alone, unless they fail.
 template <class Metric, class Solver, class Energy>
 Status cut_and_solve_with_the_better_angles(
   const Mesh_index& index, const std::vector<char>& is_singular, const std::vector<double>& prescribed,
@@ -70,20 +76,21 @@ Status cut_and_solve_with_the_better_angles(
   Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv, const Energy& energy, const Stage_progress& progress)
 {
   Status first_failure; // the reason, should no map be kept
-  double kept_log_area = 0;
+  double kept_score = 0;
   int maps_kept = 0;
-  // Solves at `angles` and keeps the map if it measures better than the one kept: no fold
-  // where that one folds, or as it does with less area distortion (area-weighted mean log^2
-  // area, what the report measures). Returns whether the map folds but might not with the
-  // flat cut and measure better: it was kept, or has less distortion than the one kept (the
-  // cut changes little of it).
-  const auto consider = [&](const std::vector<double>& angles, const Eigen::VectorXd& step, bool flat_cut) {
+  Surface_parameterization_options trial_options = options;
+  trial_options.fall_back_to_circle_packing = false;
+  // Solves at `angles` from `start` and keeps the map if it measures better than the one
+  // kept; `optimum` receives its u - u0 (empty: none). Returns whether the map folds but, cut
+  // otherwise, might measure better: its own distortion is below the kept map's score.
+  const auto consider = [&](const std::vector<double>& angles, Eigen::VectorXd start,
+                            const std::vector<double>& path_lengths, bool last_resort, Eigen::VectorXd& optimum) {
     Chart_report trial_chart;
     Cut_mesh trial_cut;
     std::vector<Uv> trial_uv;
     const Status status = cut_and_solve<Metric, Solver>(
-      index, is_singular, angles, expected_curvature, {}, step, options, report, before, trial_chart, trial_cut,
-      trial_uv, energy, progress, flat_cut ? flat_path_lengths(index, step) : std::vector<double>());
+      index, is_singular, angles, expected_curvature, {}, std::move(start), last_resort ? options : trial_options,
+      report, before, trial_chart, trial_cut, trial_uv, energy, progress, path_lengths, &optimum);
     if(!status.ok())
     {
       if(first_failure.ok())
@@ -91,12 +98,11 @@ Status cut_and_solve_with_the_better_angles(
       return false;
     }
     const double log_area = mean_log_area_squared(index, trial_cut, trial_uv);
-    const bool better =
-      maps_kept == 0 || (folds(trial_chart) != folds(chart) ? !folds(trial_chart) : log_area < kept_log_area);
-    const bool promising = folds(trial_chart) && (better || log_area < kept_log_area);
-    if(better)
+    const double score = folds(trial_chart) ? fewer_cones_distortion_factor * log_area : log_area;
+    const bool promising = folds(trial_chart) && (maps_kept == 0 || log_area < kept_score);
+    if(maps_kept == 0 || score < kept_score)
     {
-      kept_log_area = log_area;
+      kept_score = score;
       ++maps_kept;
       chart = std::move(trial_chart);
       cut = std::move(trial_cut);
@@ -104,26 +110,28 @@ Status cut_and_solve_with_the_better_angles(
     }
     return promising;
   };
-  // The 3D cut, then where it folds and the step is known the flat metric's. Returns whether
-  // the map kept is these angles', without a fold.
-  const auto consider_both_cuts = [&](const std::vector<double>& angles, const Eigen::VectorXd& step) {
+  // The 3D cut, then where it folds and the linearized step `step` is known the flat
+  // metric's. Returns whether the map kept is these angles', without a fold.
+  const auto consider_both_cuts = [&](const std::vector<double>& angles, const Eigen::VectorXd& step,
+                                      bool last_resort) {
     const int maps_before = maps_kept;
-    if(consider(angles, step, false) && step.size() == index.number_of_vertices())
-      consider(angles, step, true);
+    Eigen::VectorXd optimum, again;
+    if(consider(angles, step, {}, last_resort, optimum) && step.size() == index.number_of_vertices())
+      consider(angles, step, flat_path_lengths(index, step), last_resort, again);
     return maps_kept > maps_before && !folds(chart);
   };
   if(options.cones.angles == Cone_angles::Least_log_area)
   {
-    consider_both_cuts(trial.prescribed, trial.first_step);
+    consider_both_cuts(trial.prescribed, trial.first_step, true);
     if(maps_kept == 0)
-      consider_both_cuts(prescribed, first_step);
+      consider_both_cuts(prescribed, first_step, true);
     return maps_kept > 0 ? Status::success() : first_failure;
   }
-  consider_both_cuts(prescribed, first_step);
+  consider_both_cuts(prescribed, first_step, true);
   for(const double t : {1.0, 0.5})
   {
     const Cone_angle_trial angles = t == 1 ? trial : part_way(trial, expected_curvature, first_step, t);
-    if(consider_both_cuts(angles.prescribed, angles.first_step))
+    if(consider_both_cuts(angles.prescribed, angles.first_step, maps_kept == 0))
       break; // kept, unfolded: a smaller step towards the trial's angles would measure worse
   }
   return maps_kept > 0 ? Status::success() : first_failure;

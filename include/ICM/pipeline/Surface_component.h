@@ -123,14 +123,6 @@ inline Status user_singular_set(const Mesh_index& index, const std::vector<char>
   return Status::success();
 }
 
-/// How much more area distortion (area-weighted mean log^2 area) a map with cones given up
-/// may have than the one with all its cones, still to be kept in one piece. Measured on the
-/// shared disks whose map folds with every automatic cone: pig 1.46, camelhead 1.79,
-/// mannequin-devil 1.91, lion-head 2.05 times (one piece each, still 2 to 40 times less than
-/// with no cone); a nearly closed surface (camel with one vertex star removed) would keep 3 of
-/// 32 cones in one piece at an eq. 8 log area of 138, where all of them give 1.02 in pieces.
-constexpr double fewer_cones_distortion_factor = 2.5;
-
 /// A surface with a border that wanted automatic cones and whose chart overlaps itself with
 /// all of them (`chart`, `cut`, `uv`): nearly the most cones, in the greedy's order, that lay
 /// out in one piece, found by bisection over the count (more cones, longer seams, more
