@@ -482,12 +482,10 @@ inline void finish_prescribed_border(const Chart_problem& problem, std::vector<U
 }
 
 /// Steps 1, 5 and 7 in the conformal class of `Metric`: its initial metric, the optimum, the
-/// checked layout into `uv` (per vertex of an uncut disk, else per wedge of the cut);
-/// `log_scale` (when given) the optimum's u - u0, whatever the layout gives.
+/// checked layout into `uv` (per vertex of an uncut disk, else per wedge of the cut).
 template <class Metric, class Solver, class Energy>
 Status solve_chart_in(const Chart_problem& problem, const Chart_options& options, const Chart_method& method,
-                      const Energy& energy, Chart_solve_report& report, std::vector<Uv>& uv,
-                      Eigen::VectorXd* log_scale = nullptr)
+                      const Energy& energy, Chart_solve_report& report, std::vector<Uv>& uv)
 {
   using namespace CGAL::Surface_mesh_parameterization;
   auto stage = [&](const char* name) {
@@ -513,8 +511,6 @@ Status solve_chart_in(const Chart_problem& problem, const Chart_options& options
   report.seconds_optimum += lap();
   if(!status.ok())
     return status;
-  if(log_scale != nullptr)
-    *log_scale = u - metric.u0;
 
   stage("layout");
   Eigen::VectorXd k;
@@ -551,16 +547,12 @@ Status solve_chart_in(const Chart_problem& problem, const Chart_options& options
 /// Steps 5 and 7 of one chart: in the class of `Metric`, then, if that fails and the options
 /// allow it, in the circle packing's, whose every u is valid, from a fresh report (the
 /// seconds add up). When both fail, the first metric's reason is the one to act on and the
-/// circle packing's follows it. `log_scale` (when given) receives the optimum's u - u0 in the
-/// class of `Metric`, a warm start for the same mesh cut otherwise (empty when it failed).
+/// circle packing's follows it.
 template <class Metric, class Solver, class Energy>
 Status solve_chart(const Chart_problem& problem, const Chart_options& options, const Chart_method& method,
-                   const Energy& energy, Chart_solve_report& report, std::vector<Uv>& uv,
-                   Eigen::VectorXd* log_scale = nullptr)
+                   const Energy& energy, Chart_solve_report& report, std::vector<Uv>& uv)
 {
-  if(log_scale != nullptr)
-    log_scale->resize(0);
-  Status status = solve_chart_in<Metric, Solver>(problem, options, method, energy, report, uv, log_scale);
+  Status status = solve_chart_in<Metric, Solver>(problem, options, method, energy, report, uv);
   if constexpr(!std::is_same<Metric, Circle_packing_metric>::value)
   {
     if(status.ok() || !options.fall_back_to_circle_packing)
@@ -571,8 +563,6 @@ Status solve_chart(const Chart_problem& problem, const Chart_options& options, c
     fresh.seconds_optimum = report.seconds_optimum;
     fresh.seconds_layout = report.seconds_layout;
     report = fresh;
-    if(log_scale != nullptr)
-      log_scale->resize(0); // another class's u0: no start for `Metric`
     status = solve_chart_in<Circle_packing_metric, Solver>(problem, options, method, energy, report, uv);
     if(!status.ok())
       status.message = report.fallback_reason + "; then " + Circle_packing_metric::name + ": " + status.message;

@@ -64,7 +64,7 @@ inline std::vector<double> flat_path_lengths(const Mesh_index& index, const Eige
 /// measures better with a lower area-weighted mean log^2 area (what the report measures),
 /// one that folds (the overlap removal cuts it) taken at `fewer_cones_distortion_factor`
 /// times its own. A map that folds is tried again cut along its linearized flat metric's
-/// shortest paths rather than the 3D ones, from its own optimum. Only the entropy's angles,
+/// shortest paths rather than the 3D ones. Only the entropy's angles,
 /// the map of last resort, fall back to the circle packing: the others' maps there fold
 /// or fail as well, at the time of another solve (camel, bull). With
 /// `Cone_angles::Least_log_area` the trial's angles alone, unless they fail.
@@ -81,16 +81,16 @@ Status cut_and_solve_with_the_better_angles(
   Surface_parameterization_options trial_options = options;
   trial_options.fall_back_to_circle_packing = false;
   // Solves at `angles` from `start` and keeps the map if it measures better than the one
-  // kept; `optimum` receives its u - u0 (empty: none). Returns whether the map folds but, cut
+  // kept. Returns whether the map folds but, cut
   // otherwise, might measure better: its own distortion is below the kept map's score.
   const auto consider = [&](const std::vector<double>& angles, Eigen::VectorXd start,
-                            const std::vector<double>& path_lengths, bool last_resort, Eigen::VectorXd& optimum) {
+                            const std::vector<double>& path_lengths, bool last_resort) {
     Chart_report trial_chart;
     Cut_mesh trial_cut;
     std::vector<Uv> trial_uv;
     const Status status = cut_and_solve<Metric, Solver>(
       index, is_singular, angles, expected_curvature, {}, std::move(start), last_resort ? options : trial_options,
-      report, before, trial_chart, trial_cut, trial_uv, energy, progress, path_lengths, &optimum);
+      report, before, trial_chart, trial_cut, trial_uv, energy, progress, path_lengths);
     if(!status.ok())
     {
       if(first_failure.ok())
@@ -115,9 +115,8 @@ Status cut_and_solve_with_the_better_angles(
   const auto consider_both_cuts = [&](const std::vector<double>& angles, const Eigen::VectorXd& step,
                                       bool last_resort) {
     const int maps_before = maps_kept;
-    Eigen::VectorXd optimum, again;
-    if(consider(angles, step, {}, last_resort, optimum) && step.size() == index.number_of_vertices())
-      consider(angles, step, flat_path_lengths(index, step), last_resort, again);
+    if(consider(angles, step, {}, last_resort) && step.size() == index.number_of_vertices())
+      consider(angles, step, flat_path_lengths(index, step), last_resort);
     return maps_kept > maps_before && !folds(chart);
   };
   if(options.cones.angles == Cone_angles::Least_log_area)

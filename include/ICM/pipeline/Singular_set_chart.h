@@ -126,19 +126,15 @@ inline double relative_seam_length(const Mesh_index& index, const Cut_mesh& cut)
 
 /// Steps 4 to 7 of one component with the singular set `is_singular`: the cut (along
 /// `path_lengths`' shortest paths when given), the optimum, the layout and its checks, into
-/// `chart` (from `before`, the component's figures so far), `cut` and `uv`; `log_scale`
-/// (when given) the optimum's u - u0, empty if it failed.
+/// `chart` (from `before`, the component's figures so far), `cut` and `uv`.
 template <class Metric, class Solver, class Energy>
 Status cut_and_solve(const Mesh_index& index, const std::vector<char>& is_singular,
                      const std::vector<double>& prescribed, const std::vector<double>& expected_curvature,
                      const std::vector<char>& user_seams, Eigen::VectorXd first_step,
                      const Surface_parameterization_options& options, Surface_parameterization_report& report,
                      const Chart_report& before, Chart_report& chart, Cut_mesh& cut, std::vector<Uv>& uv,
-                     const Energy& energy, const Stage_progress& progress, const std::vector<double>& path_lengths = {},
-                     Eigen::VectorXd* log_scale = nullptr)
+                     const Energy& energy, const Stage_progress& progress, const std::vector<double>& path_lengths = {})
 {
-  if(log_scale != nullptr)
-    log_scale->resize(0);
   progress("cut", cones_stage_share);
   const Clock::time_point t = Clock::now();
   chart = before;
@@ -152,7 +148,7 @@ Status cut_and_solve(const Mesh_index& index, const std::vector<char>& is_singul
   report.seconds_cut += seconds_since(t);
 
   progress("optimum", 0.4);
-  const Status status = solve_chart<Metric, Solver>(problem, options, Chart_method(), energy, chart, uv, log_scale);
+  const Status status = solve_chart<Metric, Solver>(problem, options, Chart_method(), energy, chart, uv);
   report.seconds_optimum += chart.seconds_metric + chart.seconds_optimum;
   report.seconds_layout += chart.seconds_layout;
   chart.raw_overlapping_border_edges = chart.overlapping_border_edges;
